@@ -1,0 +1,530 @@
+#pragma once
+/// \file CommonPlaneGeometry.hpp
+/// \brief Common-plane (CP) geometry, sub-steps B-D of scp-method.md section 4: face centroid,
+/// normal and area (4.1), CP normal and point (4.2), local basis and projection (4.3), overlap
+/// polygon, contact area and point of contact (4.4-4.6), area fractions (4.7) and the initial
+/// closure u0 (4.8), and the nodal weights of the CP force (section 8). Device-callable,
+/// fixed-size buffers, no allocation.
+///
+/// Positions passed in are the half-step positions x^{n+1/2} (sub-step A is the caller's).
+/// Every point is a 3-vector; 2D problems leave z = 0 (axisymmetric: x = r, y = z).
+#include "contact/ContactParams.hpp"
+
+namespace scpdyn
+{
+
+constexpr int kMaxPolyVerts = 16;   ///< overlap buffer; clipConvex needs n_subject + n_clip <= 16
+constexpr Real kAreaEpsilon = 1e-8; ///< epsilon_A of 3.2/3.4: active iff Ac > eps*min(A1, A2)
+
+/// \brief Centroid, outward unit normal, area and diameter of one face (section 4.1).
+struct FaceGeometry
+{
+  Real c[3];     ///< vertex average [m]
+  Real n[3];     ///< outward unit normal
+  Real area;     ///< 3D: m^2; 2D plane strain: length*1 m; axisymmetric: per radian [m^2]
+  Real diameter; ///< largest vertex distance [m]
+  int valid;     ///< 0 for a degenerate (zero-area) face
+};
+
+/// \brief Everything sub-steps B-D give for one CP. Forces of the CP act along `n`, which
+/// points from face 1 to face 2.
+struct CpGeometry
+{
+  int valid;     ///< 0: degenerate face or n1 == n2 (no CP normal); other fields undefined
+  Real n[3];     ///< CP normal (D1)
+  Real x_cp[3];  ///< CP point = trial POC (D2) [m]
+  Real x_poc[3]; ///< point of contact = overlap centroid (D5) [m]
+  Real e1[3];    ///< in-plane basis (4.3); 2D: e1 = t_cp, e2 = z
+  Real e2[3];
+  Real Ac;       ///< contact area (D4, D6a, D6b) [m^2, per metre or per radian in 2D]
+  Real A1, A2;   ///< face areas (4.1)
+  Real A1p, A2p; ///< areas of the projected faces (4.7)
+  Real f1, f2;   ///< area fractions Ac/Aip (4.7), clipped to 1
+  Real u0;       ///< closure along n at the POC (D7), > 0 overlap [m]
+  Real c1[3], c2[3], n1[3], n2[3]; ///< face centroids and outward normals
+  Real h1, h2;                     ///< face diameters [m]
+};
+
+namespace CpGeom
+{
+using namespace ContactMath;
+
+KOKKOS_INLINE_FUNCTION Real cross2(Real ax, Real ay, Real bx, Real by) { return ax * by - ay * bx; }
+
+/// \brief Shoelace area and first moments (integral of xi, eta) of a closed polygon.
+KOKKOS_INLINE_FUNCTION void polygonMoments(const Real p[][2], int np, Real &A, Real &Mx, Real &My)
+{
+  A = Mx = My = 0;
+  for (int k = 0; k < np; ++k)
+  {
+    const int l = (k + 1) % np;
+    const Real w = cross2(p[k][0], p[k][1], p[l][0], p[l][1]);
+    A += w;
+    Mx += (p[k][0] + p[l][0]) * w;
+    My += (p[k][1] + p[l][1]) * w;
+  }
+  A *= 0.5;
+  Mx /= 6.0;
+  My /= 6.0;
+}
+
+KOKKOS_INLINE_FUNCTION Real polygonSignedArea(const Real p[][2], int np)
+{
+  Real A, Mx, My;
+  polygonMoments(p, np, A, Mx, My);
+  return A;
+}
+
+KOKKOS_INLINE_FUNCTION void reversePolygon(Real p[][2], int np)
+{
+  for (int i = 0, j = np - 1; i < j; ++i, --j)
+    for (int d = 0; d < 2; ++d)
+    {
+      const Real t = p[i][d];
+      p[i][d] = p[j][d];
+      p[j][d] = t;
+    }
+}
+
+/// \brief Convexity of a counter-clockwise polygon: no turn to the right beyond round-off
+/// (tolerance relative to the squared edge lengths, so collinear vertices count as convex).
+KOKKOS_INLINE_FUNCTION bool isConvexCCW(const Real p[][2], int np)
+{
+  Real scale = 0;
+  for (int k = 0; k < np; ++k)
+  {
+    const int l = (k + 1) % np;
+    scale += (p[l][0] - p[k][0]) * (p[l][0] - p[k][0]) + (p[l][1] - p[k][1]) * (p[l][1] - p[k][1]);
+  }
+  const Real tol = 1e-12 * scale;
+  for (int k = 0; k < np; ++k)
+  {
+    const int l = (k + 1) % np, m = (k + 2) % np;
+    const Real t =
+        cross2(p[l][0] - p[k][0], p[l][1] - p[k][1], p[m][0] - p[l][0], p[m][1] - p[l][1]);
+    if (t < -tol)
+      return false;
+  }
+  return true;
+}
+
+/// \brief Sutherland-Hodgman: clip `subj` by the convex CCW polygon `clip` (section 4.4 step 3).
+/// Keeps the part left of every clip edge. Returns the vertex count of `out` (0 if empty).
+/// Capacity: ns + nc <= kMaxPolyVerts (each convex half-plane cut adds at most one vertex).
+KOKKOS_INLINE_FUNCTION int clipConvex(const Real subj[][2], int ns, const Real clip[][2], int nc,
+                                      Real out[][2])
+{
+  Real buf[kMaxPolyVerts][2];
+  int n = ns;
+  for (int k = 0; k < ns; ++k)
+    out[k][0] = subj[k][0], out[k][1] = subj[k][1];
+  for (int e = 0; e < nc && n > 0; ++e)
+  {
+    const Real ax = clip[e][0], ay = clip[e][1];
+    const Real ex = clip[(e + 1) % nc][0] - ax, ey = clip[(e + 1) % nc][1] - ay;
+    for (int k = 0; k < n; ++k)
+      buf[k][0] = out[k][0], buf[k][1] = out[k][1];
+    const int nin = n;
+    n = 0;
+    for (int k = 0; k < nin; ++k)
+    {
+      const int j = (k + nin - 1) % nin; // S = previous vertex, E = current vertex
+      const Real dS = cross2(ex, ey, buf[j][0] - ax, buf[j][1] - ay);
+      const Real dE = cross2(ex, ey, buf[k][0] - ax, buf[k][1] - ay);
+      // dS - dE cannot vanish below: exactly one of the two is negative
+      if ((dE >= 0) != (dS >= 0) && n < kMaxPolyVerts)
+      {
+        const Real t = dS / (dS - dE);
+        out[n][0] = buf[j][0] + t * (buf[k][0] - buf[j][0]);
+        out[n][1] = buf[j][1] + t * (buf[k][1] - buf[j][1]);
+        ++n;
+      }
+      if (dE >= 0 && n < kMaxPolyVerts)
+      {
+        out[n][0] = buf[k][0], out[n][1] = buf[k][1];
+        ++n;
+      }
+    }
+  }
+  return n < 3 ? 0 : n;
+}
+
+/// \brief A polygon as a signed sum of convex pieces: itself if convex, else its fan triangles
+/// about the vertex centroid, each oriented CCW and carrying the sign of its shoelace area
+/// (section 4.4 step 4). Exact for any simple polygon: the fan's winding numbers add up to the
+/// polygon's.
+struct ConvexPieces
+{
+  Real p[4][4][2]; ///< up to 4 pieces of up to 4 vertices (face polygons have <= 4 vertices)
+  int nv[4];
+  Real sign[4];
+  int count;
+};
+
+KOKKOS_INLINE_FUNCTION void splitConvex(const Real poly[][2], int np, ConvexPieces &cp)
+{
+  if (isConvexCCW(poly, np))
+  {
+    cp.count = 1;
+    cp.nv[0] = np;
+    cp.sign[0] = 1;
+    for (int k = 0; k < np; ++k)
+      cp.p[0][k][0] = poly[k][0], cp.p[0][k][1] = poly[k][1];
+    return;
+  }
+  Real cx = 0, cy = 0;
+  for (int k = 0; k < np; ++k)
+    cx += poly[k][0] / np, cy += poly[k][1] / np;
+  cp.count = 0;
+  for (int k = 0; k < np; ++k)
+  {
+    const int l = (k + 1) % np, m = cp.count;
+    cp.p[m][0][0] = poly[k][0], cp.p[m][0][1] = poly[k][1];
+    cp.p[m][1][0] = poly[l][0], cp.p[m][1][1] = poly[l][1];
+    cp.p[m][2][0] = cx, cp.p[m][2][1] = cy;
+    cp.nv[m] = 3;
+    const Real a = polygonSignedArea(cp.p[m], 3);
+    if (a == 0)
+      continue; // a spoke-aligned sliver contributes nothing
+    cp.sign[m] = a > 0 ? 1 : -1;
+    if (a < 0)
+      reversePolygon(cp.p[m], 3);
+    ++cp.count;
+  }
+}
+
+/// \brief Area and first moments of the intersection of two CCW simple polygons (<= 4 vertices
+/// each) in the CP coordinates: Sutherland-Hodgman when both are convex, signed fans otherwise.
+KOKKOS_INLINE_FUNCTION void overlapMoments(const Real P[][2], int np, const Real Q[][2], int nq,
+                                           Real &A, Real &Mx, Real &My)
+{
+  ConvexPieces a, b;
+  splitConvex(P, np, a);
+  splitConvex(Q, nq, b);
+  A = Mx = My = 0;
+  Real out[kMaxPolyVerts][2];
+  for (int i = 0; i < a.count; ++i)
+    for (int j = 0; j < b.count; ++j)
+    {
+      const int no = clipConvex(a.p[i], a.nv[i], b.p[j], b.nv[j], out);
+      if (no == 0)
+        continue;
+      Real ai, mx, my;
+      polygonMoments(out, no, ai, mx, my);
+      const Real s = a.sign[i] * b.sign[j];
+      A += s * ai, Mx += s * mx, My += s * my;
+    }
+}
+
+/// \brief In-plane basis of 4.3: e1 = normalise(k x n) with k the axis of smallest |n_k|,
+/// e2 = n x e1, so (e1, e2, n) is right-handed.
+KOKKOS_INLINE_FUNCTION void cpBasis(const Real n[3], Real e1[3], Real e2[3])
+{
+  int k = 0;
+  if (abs(n[1]) < abs(n[k]))
+    k = 1;
+  if (abs(n[2]) < abs(n[k]))
+    k = 2;
+  Real ax[3] = {0, 0, 0};
+  ax[k] = 1;
+  cross(ax, n, e1);
+  const Real l = norm(e1);
+  for (int d = 0; d < 3; ++d)
+    e1[d] /= l;
+  cross(n, e1, e2);
+}
+
+KOKKOS_INLINE_FUNCTION Real faceDiameter(const Real x[][3], int nn)
+{
+  Real h2 = 0;
+  for (int i = 0; i < nn; ++i)
+    for (int j = i + 1; j < nn; ++j)
+    {
+      const Real d[3] = {x[j][0] - x[i][0], x[j][1] - x[i][1], x[j][2] - x[i][2]};
+      h2 = max(h2, dot(d, d));
+    }
+  return sqrt(h2);
+}
+
+/// \brief (D7): u0 = s1 - s2, where s_k locates the plane of face k along x_poc + s*n.
+KOKKOS_INLINE_FUNCTION Real initialClosure(const CpGeometry &g)
+{
+  Real s[2];
+  for (int f = 0; f < 2; ++f)
+  {
+    const Real *c = f == 0 ? g.c1 : g.c2;
+    const Real *nf = f == 0 ? g.n1 : g.n2;
+    const Real d[3] = {c[0] - g.x_poc[0], c[1] - g.x_poc[1], c[2] - g.x_poc[2]};
+    s[f] = dot(d, nf) / dot(g.n, nf);
+  }
+  return s[0] - s[1];
+}
+
+} // namespace CpGeom
+
+/// \brief Face centroid, outward normal, area and diameter (section 4.1).
+///
+/// Dim = 2: segment (p, q) with the element on its left, n = (t_y, -t_x)/|t|; area = length x 1 m
+/// (plane strain) or (r_p + r_q)/2 x length per radian (axisymmetric, r = x).
+/// Dim = 3: triangle, or quadrilateral split into the pallet triangles (x_i, x_i+1, c): the normal
+/// is the normalised sum of their area vectors (the vector area, independent of c), the area the
+/// sum of their areas. Node order right-handed about the outward normal.
+template <int Dim>
+KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool axisym)
+{
+  using namespace ContactMath;
+  FaceGeometry f;
+  for (int d = 0; d < 3; ++d)
+  {
+    f.c[d] = 0;
+    for (int i = 0; i < nn; ++i)
+      f.c[d] += x[i][d];
+    f.c[d] /= nn;
+  }
+  f.diameter = CpGeom::faceDiameter(x, nn);
+  Real vec[3] = {0, 0, 0};
+  if constexpr (Dim == 2)
+  {
+    const Real tx = x[1][0] - x[0][0], ty = x[1][1] - x[0][1];
+    const Real len = sqrt(tx * tx + ty * ty);
+    vec[0] = ty, vec[1] = -tx;
+    f.area = axisym ? 0.5 * (x[0][0] + x[1][0]) * len : len;
+  }
+  else
+  {
+    // a triangle is its own single "pallet"; a quad has four about its centroid
+    const bool tri = nn == 3;
+    const int ntri = tri ? 1 : nn;
+    const Real *o = tri ? x[0] : f.c;
+    f.area = 0;
+    for (int k = 0; k < ntri; ++k)
+    {
+      const Real *p = tri ? x[1] : x[k];
+      const Real *q = tri ? x[2] : x[(k + 1) % nn];
+      const Real a[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
+      const Real b[3] = {q[0] - o[0], q[1] - o[1], q[2] - o[2]};
+      Real cr[3];
+      cross(a, b, cr);
+      for (int d = 0; d < 3; ++d)
+        vec[d] += 0.5 * cr[d];
+      f.area += 0.5 * norm(cr);
+    }
+  }
+  const Real l = norm(vec);
+  f.valid = (l > 0 && f.area > 0) ? 1 : 0;
+  for (int d = 0; d < 3; ++d)
+    f.n[d] = l > 0 ? vec[d] / l : 0;
+  return f;
+}
+
+/// \brief Sub-steps B-D for one face pair (section 4). `x1`, `x2`: half-step node positions of
+/// face 1 (smaller global key, 3.5) and face 2; `n1`, `n2` their node counts (2 in 2D; 3 or 4 in
+/// 3D). `axisym` selects the per-radian 2D geometry of 4.6 (ignored in 3D).
+///
+/// The result is valid whenever both faces have positive area and n1 != n2; Ac may then still be
+/// zero (no overlap). Activity (3.4) is cpIsActive(). Swapping the faces reverses n and leaves
+/// Ac, x_poc and u0 unchanged (to round-off).
+template <int Dim>
+KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1, const Real x2[][3],
+                                                     int n2, bool axisym)
+{
+  using namespace ContactMath;
+  static_assert(Dim == 2 || Dim == 3, "computeCommonPlane: Dim is 2 or 3");
+  CpGeometry g;
+  const bool ax = Dim == 2 && axisym;
+  const FaceGeometry f1 = faceGeometry<Dim>(x1, n1, ax);
+  const FaceGeometry f2 = faceGeometry<Dim>(x2, n2, ax);
+  Real dn[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    g.c1[d] = f1.c[d], g.c2[d] = f2.c[d], g.n1[d] = f1.n[d], g.n2[d] = f2.n[d];
+    g.x_cp[d] = 0.5 * (f1.c[d] + f2.c[d]);
+    dn[d] = f1.n[d] - f2.n[d];
+  }
+  g.A1 = f1.area, g.A2 = f2.area, g.h1 = f1.diameter, g.h2 = f2.diameter;
+  g.Ac = g.A1p = g.A2p = g.f1 = g.f2 = g.u0 = 0;
+  const Real ldn = norm(dn);
+  g.valid = (f1.valid && f2.valid && ldn > 1e-6) ? 1 : 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    g.n[d] = g.valid ? dn[d] / ldn : 0;
+    g.x_poc[d] = g.x_cp[d];
+    g.e1[d] = g.e2[d] = 0;
+  }
+  if (!g.valid)
+    return g;
+
+  Real xi_c = 0, eta_c = 0;
+  if constexpr (Dim == 2)
+  {
+    // (4.5, 4.6) project on the CP line: one tangent t_cp = (-n_y, n_x)
+    g.e1[0] = -g.n[1], g.e1[1] = g.n[0], g.e2[2] = 1;
+    Real lo[2], hi[2];
+    for (int f = 0; f < 2; ++f)
+    {
+      const Real(*x)[3] = f == 0 ? x1 : x2;
+      lo[f] = 1e300, hi[f] = -1e300;
+      for (int i = 0; i < 2; ++i)
+      {
+        const Real d[3] = {x[i][0] - g.x_cp[0], x[i][1] - g.x_cp[1], 0};
+        const Real xi = dot(d, g.e1);
+        lo[f] = min(lo[f], xi), hi[f] = max(hi[f], xi);
+      }
+    }
+    const Real xa = max(lo[0], lo[1]), xb = min(hi[0], hi[1]);
+    const Real L = max(0.0, xb - xa);
+    if (!ax)
+    {
+      g.Ac = L;
+      g.A1p = hi[0] - lo[0], g.A2p = hi[1] - lo[1];
+      xi_c = 0.5 * (xa + xb);
+    }
+    else
+    {
+      // (D6b): r along the CP line is linear in xi; trapezoid area and centroid per radian
+      const Real r0 = g.x_cp[0], tr = g.e1[0];
+      const Real ra = r0 + xa * tr, rb = r0 + xb * tr;
+      g.Ac = 0.5 * (ra + rb) * L;
+      g.A1p = 0.5 * (2 * r0 + (lo[0] + hi[0]) * tr) * (hi[0] - lo[0]);
+      g.A2p = 0.5 * (2 * r0 + (lo[1] + hi[1]) * tr) * (hi[1] - lo[1]);
+      xi_c = (L > 0 && ra + rb > 0) ? xa + L * (ra + 2 * rb) / (3 * (ra + rb)) : 0.5 * (xa + xb);
+    }
+  }
+  else
+  {
+    CpGeom::cpBasis(g.n, g.e1, g.e2);
+    Real P[2][4][2];
+    const int nv[2] = {n1, n2};
+    Real area[2];
+    for (int f = 0; f < 2; ++f)
+    {
+      const Real(*x)[3] = f == 0 ? x1 : x2;
+      for (int i = 0; i < nv[f]; ++i)
+      {
+        const Real d[3] = {x[i][0] - g.x_cp[0], x[i][1] - g.x_cp[1], x[i][2] - g.x_cp[2]};
+        P[f][i][0] = dot(d, g.e1), P[f][i][1] = dot(d, g.e2);
+      }
+      area[f] = CpGeom::polygonSignedArea(P[f], nv[f]);
+      if (area[f] < 0) // face 2 projects clockwise (n2 ~ -n)
+        CpGeom::reversePolygon(P[f], nv[f]), area[f] = -area[f];
+    }
+    g.A1p = area[0], g.A2p = area[1];
+    if (area[0] > 0 && area[1] > 0)
+    {
+      Real A, Mx, My;
+      CpGeom::overlapMoments(P[0], n1, P[1], n2, A, Mx, My);
+      if (A > 0)
+      {
+        g.Ac = A;
+        xi_c = Mx / A, eta_c = My / A;
+      }
+    }
+  }
+  for (int d = 0; d < 3; ++d)
+    g.x_poc[d] = g.x_cp[d] + xi_c * g.e1[d] + eta_c * g.e2[d];
+  g.f1 = g.A1p > 0 ? min(1.0, g.Ac / g.A1p) : 0;
+  g.f2 = g.A2p > 0 ? min(1.0, g.Ac / g.A2p) : 0;
+  g.u0 = CpGeom::initialClosure(g);
+  return g;
+}
+
+/// \brief Shape-function weights of the point of contact on one face (8.2): the face and the POC
+/// are projected on the CP; segment (1 - s, s), triangle barycentric, quad inverse bilinear map
+/// (Newton, <= 10 iterations); weights clipped to [0, 1] and renormalised.
+KOKKOS_INLINE_FUNCTION void pocWeights(const Real x[][3], int nn, const CpGeometry &g, Real w[])
+{
+  using namespace ContactMath;
+  Real q[4][2], pp[2];
+  const Real dp[3] = {g.x_poc[0] - g.x_cp[0], g.x_poc[1] - g.x_cp[1], g.x_poc[2] - g.x_cp[2]};
+  pp[0] = dot(dp, g.e1), pp[1] = dot(dp, g.e2);
+  for (int i = 0; i < nn; ++i)
+  {
+    const Real d[3] = {x[i][0] - g.x_cp[0], x[i][1] - g.x_cp[1], x[i][2] - g.x_cp[2]};
+    q[i][0] = dot(d, g.e1), q[i][1] = dot(d, g.e2);
+  }
+  if (nn == 2)
+  {
+    const Real L = q[1][0] - q[0][0];
+    const Real s = L != 0 ? (pp[0] - q[0][0]) / L : 0.5;
+    w[0] = 1 - s, w[1] = s;
+  }
+  else if (nn == 3)
+  {
+    const Real A =
+        CpGeom::cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], q[2][0] - q[0][0], q[2][1] - q[0][1]);
+    for (int i = 0; i < 3; ++i)
+    {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      w[i] = A != 0 ? CpGeom::cross2(q[j][0] - pp[0], q[j][1] - pp[1], q[k][0] - pp[0],
+                                     q[k][1] - pp[1]) /
+                          A
+                    : 1.0 / 3.0;
+    }
+  }
+  else
+  {
+    Real s = 0.5, t = 0.5;
+    for (int it = 0; it < 10; ++it)
+    {
+      Real N[4] = {(1 - s) * (1 - t), s * (1 - t), s * t, (1 - s) * t};
+      Real R[2] = {-pp[0], -pp[1]};
+      for (int i = 0; i < 4; ++i)
+        R[0] += N[i] * q[i][0], R[1] += N[i] * q[i][1];
+      Real Js[2], Jt[2];
+      for (int d = 0; d < 2; ++d)
+      {
+        Js[d] = (1 - t) * (q[1][d] - q[0][d]) + t * (q[2][d] - q[3][d]);
+        Jt[d] = (1 - s) * (q[3][d] - q[0][d]) + s * (q[2][d] - q[1][d]);
+      }
+      const Real det = Js[0] * Jt[1] - Js[1] * Jt[0];
+      if (det == 0)
+        break;
+      const Real ds = (R[0] * Jt[1] - R[1] * Jt[0]) / det, dt = (Js[0] * R[1] - Js[1] * R[0]) / det;
+      s -= ds, t -= dt;
+      if (abs(ds) + abs(dt) < 1e-14)
+        break;
+    }
+    w[0] = (1 - s) * (1 - t), w[1] = s * (1 - t), w[2] = s * t, w[3] = (1 - s) * t;
+  }
+  Real sum = 0;
+  for (int i = 0; i < nn; ++i)
+    w[i] = min(1.0, max(0.0, w[i])), sum += w[i];
+  for (int i = 0; i < nn; ++i)
+    w[i] = sum > 0 ? w[i] / sum : 1.0 / nn;
+}
+
+/// \brief Nodal weights of the CP force on face `face` (1 or 2), section 8: node penetrations
+/// through the CP, delta_i = max(0, +-(x_i - x_poc).n), normalised (17)-(18); pocWeights() when
+/// the rule is Poc or sum(delta) <= 1e-12 h_f (8.2). Weights sum to 1. Face 1 receives
+/// -F*w_i, face 2 +F*w_j with F = Fn n + Fs.
+KOKKOS_INLINE_FUNCTION void nodalWeights(const Real x[][3], int nn, const CpGeometry &g, int face,
+                                         DistributionRule rule, Real w[])
+{
+  using namespace ContactMath;
+  if (rule == DistributionRule::Penetration)
+  {
+    const Real sign = face == 1 ? 1.0 : -1.0;
+    Real sum = 0;
+    for (int i = 0; i < nn; ++i)
+    {
+      const Real d[3] = {x[i][0] - g.x_poc[0], x[i][1] - g.x_poc[1], x[i][2] - g.x_poc[2]};
+      w[i] = max(0.0, sign * dot(d, g.n));
+      sum += w[i];
+    }
+    if (sum > 1e-12 * (face == 1 ? g.h1 : g.h2))
+    {
+      for (int i = 0; i < nn; ++i)
+        w[i] /= sum;
+      return;
+    }
+  }
+  pocWeights(x, nn, g, w);
+}
+
+/// \brief Activity test of 3.2/3.4: Ac > epsilon_A * min(A1, A2).
+KOKKOS_INLINE_FUNCTION bool cpIsActive(const CpGeometry &g)
+{
+  return g.valid && g.Ac > kAreaEpsilon * ContactMath::min(g.A1, g.A2);
+}
+
+} // namespace scpdyn

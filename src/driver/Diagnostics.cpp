@@ -1,0 +1,166 @@
+// Energies, gauges: what the solver reports about its state.
+#include "driver/Solver.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace scpdyn
+{
+namespace
+{
+const char *kNodeQuantities[] = {"x", "y", "z", "dx", "dy", "dz", "vx", "vy", "vz"};
+const char *kElementQuantities[] = {"sxx",      "syy",     "szz",            "sxy",    "syz", "szx",
+                                    "pressure", "density", "plastic_strain", "energy", "q"};
+
+int quantityCode(const std::string &q, bool on_element)
+{
+  const char **names = on_element ? kElementQuantities : kNodeQuantities;
+  const int count = on_element ? 11 : 9;
+  for (int k = 0; k < count; ++k)
+    if (q == names[k])
+      return k;
+  return -1;
+}
+} // namespace
+
+void Solver::setupGauges()
+{
+  auto h_x0 = Kokkos::create_mirror_view_and_copy(HostSpace(), _nodes.x0);
+  std::vector<Index> ids;
+  std::vector<Index> codes;
+  for (size_t g = 0; g < _deck.gauges.size(); ++g)
+  {
+    const GaugeSpec &spec = _deck.gauges[g];
+    const std::string key = _deck.path + ": gauges[" + std::to_string(g) + "]";
+    const bool on_element = spec.kind == "element";
+    Index id = spec.id;
+    if (spec.has_point)
+    {
+      // nearest node, or the element with the nearest centroid
+      Real best = std::numeric_limits<Real>::max();
+      const Index count = on_element ? _mesh.numElements() : _mesh.numNodes();
+      Index e_first = 0;
+      size_t part = 0;
+      for (Index k = 0; k < count; ++k)
+      {
+        Real c[3] = {0, 0, 0};
+        if (on_element)
+        {
+          while (k >= e_first + _mesh.parts[part].numElements())
+            e_first += _mesh.parts[part++].numElements();
+          const HostPart &p = _mesh.parts[part];
+          const int nn = nodesPerElement(p.type);
+          for (int a = 0; a < nn; ++a)
+            for (int i = 0; i < 3; ++i)
+              c[i] += _mesh.coords[size_t(p.connectivity[size_t((k - e_first) * nn + a)])][size_t(i)] / nn;
+        }
+        else
+          for (int i = 0; i < 3; ++i)
+            c[i] = h_x0(k, i);
+        Real d = 0;
+        for (int i = 0; i < 3; ++i)
+          d += (c[i] - spec.point[size_t(i)]) * (c[i] - spec.point[size_t(i)]);
+        if (d < best)
+        {
+          best = d;
+          id = k;
+        }
+      }
+    }
+    const Index limit = on_element ? _mesh.numElements() : _mesh.numNodes();
+    if (id < 0 || id >= limit)
+      throw InputError(key + ": " + (on_element ? "element " : "node ") + std::to_string(id) +
+                       " does not exist (the mesh has " + std::to_string(limit) + ")");
+    const Index device_id = on_element ? _host_to_device_element[size_t(id)] : id;
+    for (const auto &q : spec.quantities)
+    {
+      const int code = quantityCode(q, on_element);
+      if (code < 0)
+        throw InputError(key + ".quantities: unknown quantity '" + q + "' for a " + spec.kind +
+                         " gauge");
+      _gauges.push_back({spec.name + ":" + q, on_element, device_id, code});
+      ids.push_back(device_id);
+      codes.push_back(code + (on_element ? 100 : 0));
+    }
+  }
+  _gauge_id = IndexView("gauge_id", ids.size());
+  _gauge_code = IndexView("gauge_code", codes.size());
+  auto h_id = Kokkos::create_mirror_view(_gauge_id);
+  auto h_code = Kokkos::create_mirror_view(_gauge_code);
+  for (size_t k = 0; k < ids.size(); ++k)
+  {
+    h_id(k) = ids[k];
+    h_code(k) = codes[k];
+  }
+  Kokkos::deep_copy(_gauge_id, h_id);
+  Kokkos::deep_copy(_gauge_code, h_code);
+}
+
+std::vector<Real> Solver::gaugeValues() const
+{
+  const size_t count = _gauges.size();
+  if (count == 0)
+    return {};
+  RealView values("gauge_values", count);
+  auto id = _gauge_id;
+  auto code = _gauge_code;
+  auto x = _nodes.x, x0 = _nodes.x0, v = _nodes.v;
+  auto stress = _elems.stress;
+  auto mass = _elems.mass, volume = _elems.volume, energy = _elems.energy;
+  auto eps = _elems.plastic_strain, q = _elems.q;
+  Kokkos::parallel_for(
+      "scpdyn::output::gauges", Kokkos::RangePolicy<ExecSpace>(0, Index(count)),
+      KOKKOS_LAMBDA(const Index g) {
+        const Index k = id(g);
+        const int c = code(g);
+        Real value = 0;
+        if (c < 100)
+          value = c < 3 ? x(k, c) : c < 6 ? x(k, c - 3) - x0(k, c - 3) : v(k, c - 6);
+        else
+        {
+          const int e = c - 100;
+          if (e < 6)
+            value = stress(k, e);
+          else if (e == 6)
+            value = -(stress(k, 0) + stress(k, 1) + stress(k, 2)) / 3;
+          else if (e == 7)
+            value = mass(k) / volume(k);
+          else if (e == 8)
+            value = eps(k);
+          else if (e == 9)
+            value = energy(k);
+          else
+            value = q(k);
+        }
+        values(g) = value;
+      });
+  auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), values);
+  return std::vector<Real>(h.data(), h.data() + count);
+}
+
+EnergyReport Solver::energies() const
+{
+  EnergyReport r;
+  auto mass = _elems.mass, energy = _elems.energy, hg = _elems.hourglass_energy;
+  Real internal = 0, hourglass = 0;
+  Kokkos::parallel_reduce(
+      "scpdyn::output::internalEnergy", Kokkos::RangePolicy<ExecSpace>(0, _elems.count),
+      KOKKOS_LAMBDA(const Index e, Real &s) { s += mass(e) * energy(e); }, internal);
+  Kokkos::parallel_reduce(
+      "scpdyn::output::hourglassEnergy", Kokkos::RangePolicy<ExecSpace>(0, _elems.count),
+      KOKKOS_LAMBDA(const Index e, Real &s) { s += hg(e); }, hourglass);
+  r.internal = internal;
+  r.hourglass = hourglass;
+  r.kinetic = _last_sums.kinetic;
+  for (int i = 0; i < 3; ++i)
+    r.momentum[i] = _last_sums.momentum[i];
+  r.external_work = _external_work;
+  // the leapfrog conserves 1/2 m v^n.v^{n+1} + IE(x^{n+1/2}) (verification.md T1)
+  const Real total = _kinetic_mid + internal + hourglass + r.contact;
+  const Real scale = std::max({_energy_scale, std::abs(_initial_energy) + std::abs(_external_work),
+                               std::numeric_limits<Real>::min()});
+  r.balance_error = (total - _initial_energy - _external_work) / scale;
+  return r;
+}
+
+} // namespace scpdyn

@@ -1,0 +1,60 @@
+#pragma once
+/// \file NodeUpdate.hpp
+/// \brief Step 5 (zero forces) and step 12 (update nodes) of the cycle.
+///
+/// Drift-kick-drift leapfrog (scp-method.md 2.3): the element step used x^{n+1/2} =
+/// x^n + dt/2 v^n; here v^{n+1} = v^n + dt F/M, velocity constraints imposed, and
+/// x^{n+1} = x^n + dt/2 (v^n + v^{n+1}).
+#include "bc/BoundaryConditions.hpp"
+#include "core/Fields.hpp"
+
+namespace scpdyn
+{
+
+/// \brief Sums over nodes of one update (reduced in one pass).
+struct NodeSums
+{
+  Real kinetic = 0;     ///< 1/2 sum m |v^{n+1}|^2
+  Real kinetic_mid = 0; ///< 1/2 sum m v^n . v^{n+1} (the leapfrog's conserved kinetic part)
+  Real external_work = 0; ///< work of f_ext and constraint reactions over the step, f.v^n dt
+  Real momentum[3] = {0, 0, 0};
+
+  KOKKOS_INLINE_FUNCTION NodeSums &operator+=(const NodeSums &o)
+  {
+    kinetic += o.kinetic;
+    kinetic_mid += o.kinetic_mid;
+    external_work += o.external_work;
+    for (int i = 0; i < 3; ++i)
+      momentum[i] += o.momentum[i];
+    return *this;
+  }
+  KOKKOS_INLINE_FUNCTION void operator+=(const volatile NodeSums &o) volatile
+  {
+    kinetic += o.kinetic;
+    kinetic_mid += o.kinetic_mid;
+    external_work += o.external_work;
+    for (int i = 0; i < 3; ++i)
+      momentum[i] += o.momentum[i];
+  }
+};
+
+/// \brief Step 5: f_int = 0 (unless the corner gather will overwrite it), f_ext = m g.
+void zeroForces(const NodeFields &nodes, const Real gravity[3], bool gather);
+
+/// \brief Step 12: integrate velocities and positions; returns kinetic energies, external
+/// work and momentum.
+NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bc, Real dt, int dim);
+
+/// \brief Kinetic energy and momentum of the current velocities.
+NodeSums nodeSums(const NodeFields &nodes);
+
+} // namespace scpdyn
+
+namespace Kokkos
+{
+template <>
+struct reduction_identity<scpdyn::NodeSums>
+{
+  KOKKOS_FORCEINLINE_FUNCTION static scpdyn::NodeSums sum() { return scpdyn::NodeSums(); }
+};
+} // namespace Kokkos

@@ -1,0 +1,123 @@
+// The 13-step cycle of the paper (scp-method.md 2.2), read top to bottom in Solver::cycle().
+#include "driver/Solver.hpp"
+
+#include "driver/Outputs.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace scpdyn
+{
+
+void Solver::cycle()
+{
+  // No shortened last step: a sudden change of dt changes the leapfrog's conserved energy
+  // (an artefact in the balance); the run ends on the first cycle at or past the end time.
+  _dt = _dt_next;
+  stepSortIntoBins();             // 3: cycle begins; contact faces into bins when due
+  stepExchangeFaceConnectivity(); // 4: bounding boxes, occupied bins, ghost-face lists
+  stepZeroForces();               // 5: zero forces; external-face variables
+  stepElementSolvers();           // 6: half-step kinematics, materials, internal forces
+  stepExchangeSharedNodeForces(); // 7: sum internal forces on shared nodes
+  stepExchangeGhostFaceData();    // 8: ghost faces get x, v, face masses
+  stepContactForces();            // 9: common planes: detection, geometry, forces
+  stepFaceBoundaryConditions();   // 10: pressure on faces
+  stepNodeBoundaryConditions();   // 11: nodal forces (velocities are imposed in 12)
+  stepUpdateNodes();              // 12: v, x; next stable time step
+  _time += _dt;                   // 13: back to 3 (output by the caller)
+  ++_cycle;
+}
+
+// Steps 3, 4, 7, 8 and 9 are filled in by the contact and domain-decomposition issues.
+void Solver::stepSortIntoBins() {}
+void Solver::stepExchangeFaceConnectivity() {}
+void Solver::stepExchangeSharedNodeForces() {}
+void Solver::stepExchangeGhostFaceData() {}
+void Solver::stepContactForces() {}
+
+void Solver::stepZeroForces()
+{
+  ScopedStep t(_timers, "05_zero_forces");
+  zeroForces(_nodes, _deck.gravity.data(), _controls.gather);
+}
+
+void Solver::stepElementSolvers()
+{
+  ScopedStep t(_timers, "06_element_solvers");
+  _controls.dt = _dt;
+  _controls.half_time = _time + 0.5 * _dt;
+  const Real dt_elem = computeElementForces(_groups, _controls, _nodes, _elems, _materials, _corners);
+  if (_controls.gather)
+    gatherCornerForces(_nodes, _corners);
+  if (!(dt_elem > 0))
+  {
+    std::ostringstream os;
+    if (std::isnan(dt_elem))
+      os << "non-finite element state at cycle " << _cycle << ", time " << _time;
+    else
+    {
+      const Index d = Index(-dt_elem) - 1;
+      Index mesh_id = d;
+      for (size_t k = 0; k < _host_to_device_element.size(); ++k)
+        if (_host_to_device_element[k] == d)
+          mesh_id = Index(k);
+      os << "element " << mesh_id << " inverted at cycle " << _cycle << ", time " << _time
+         << " s (dt " << _dt << " s): reduce time.courant or check the loading";
+    }
+    throw SimulationError(os.str());
+  }
+  _dt_next = std::min(_deck.courant * dt_elem, _deck.dt_max);
+}
+
+void Solver::stepFaceBoundaryConditions()
+{
+  ScopedStep t(_timers, "10_face_bcs");
+  updateLoadValues(_bc, _time + 0.5 * _dt);
+  applyFaceLoads(_bc, _nodes, _dt, _deck.dimension, _deck.geometry);
+}
+
+void Solver::stepNodeBoundaryConditions()
+{
+  ScopedStep t(_timers, "11_node_bcs");
+  applyNodeForces(_bc, _nodes);
+}
+
+void Solver::stepUpdateNodes()
+{
+  ScopedStep t(_timers, "12_update_nodes");
+  updateVelocityValues(_bc, _time + _dt);
+  _last_sums = updateNodes(_nodes, _bc, _dt, _deck.dimension);
+  _external_work += _last_sums.external_work;
+  _kinetic_mid = _last_sums.kinetic_mid;
+  _energy_scale = std::max(_energy_scale, _last_sums.kinetic);
+  if (!std::isfinite(_last_sums.kinetic))
+  {
+    std::ostringstream os;
+    os << "non-finite nodal velocities at cycle " << _cycle << ", time " << _time;
+    throw SimulationError(os.str());
+  }
+}
+
+long Solver::run(const std::string &output_dir)
+{
+  Outputs out(*this, output_dir);
+  out.begin();
+  try
+  {
+    while (_time < _deck.end_time &&
+           (_deck.max_cycles < 0 || _cycle < _deck.max_cycles))
+    {
+      cycle();
+      out.afterCycle();
+    }
+  }
+  catch (const SimulationError &e)
+  {
+    out.finish(e.what());
+    throw;
+  }
+  out.finish("");
+  return _cycle;
+}
+
+} // namespace scpdyn

@@ -1,0 +1,129 @@
+#pragma once
+/// \file Solver.hpp
+/// \brief The explicit Lagrangian solver: owns the problem's data and runs the 13-step cycle
+/// of the paper (scp-method.md section 2) in Solver::cycle().
+#include "bc/BoundaryConditions.hpp"
+#include "core/Fields.hpp"
+#include "core/Timers.hpp"
+#include "driver/NodeUpdate.hpp"
+#include "element/InternalForce.hpp"
+#include "input/Deck.hpp"
+#include "mesh/HostMesh.hpp"
+
+#include <memory>
+
+namespace scpdyn
+{
+
+class Outputs;
+
+/// \brief A run that cannot go on (inverted element, non-finite state); the message names
+/// the element and cycle. main() exits with status 3 after the outputs are flushed.
+struct SimulationError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// \brief Energies of the whole model [J] (per metre in plane strain, per radian axisymmetric).
+struct EnergyReport
+{
+  Real kinetic = 0;
+  Real internal = 0;
+  Real hourglass = 0;
+  Real external_work = 0;
+  Real contact = 0;
+  Real balance_error = 0; ///< (E - E0 - W_ext) / reference, on the leapfrog's conserved energy
+  Real momentum[3] = {0, 0, 0};
+};
+
+/// \brief A gauge resolved to a node or element id and quantity codes.
+struct GaugeSlot
+{
+  std::string column;
+  bool on_element = false;
+  Index id = -1;
+  int quantity = 0;
+};
+
+class Solver
+{
+public:
+  /// \brief Set-up (steps 1 and 2): meshes, sets, materials, BCs, initial state.
+  explicit Solver(const Deck &deck);
+  ~Solver();
+
+  /// \brief Run to the end time with outputs in `output_dir`; returns the number of cycles.
+  long run(const std::string &output_dir);
+  /// \brief One cycle of the 13 steps.
+  void cycle();
+
+  Real time() const { return _time; }
+  Real dt() const { return _dt; }
+  long cycles() const { return _cycle; }
+  const Deck &deck() const { return _deck; }
+  const HostMesh &mesh() const { return _mesh; }
+  const NodeFields &nodes() const { return _nodes; }
+  const ElementFields &elements() const { return _elems; }
+  const std::vector<GaugeSlot> &gauges() const { return _gauges; }
+  const StepTimers &timers() const { return _timers; }
+  const std::vector<ElementGroup> &groups() const { return _groups; }
+  /// \brief Device element id of a mesh element id (parts numbered in deck order).
+  Index deviceElement(Index mesh_element) const { return _host_to_device_element[size_t(mesh_element)]; }
+  /// \brief Current energies and momentum (reduces over elements; not free).
+  EnergyReport energies() const;
+  /// \brief Current gauge values, in the order of gauges().
+  std::vector<Real> gaugeValues() const;
+
+private:
+  void setupMesh();
+  void setupFields();
+  void setupSets();
+  void setupBoundaryConditions();
+  void setupGauges();
+  void setupInitialState();
+
+  // the cycle's steps (numbers as in the paper)
+  void stepSortIntoBins();             // 3
+  void stepExchangeFaceConnectivity(); // 4
+  void stepZeroForces();               // 5
+  void stepElementSolvers();           // 6
+  void stepExchangeSharedNodeForces(); // 7
+  void stepExchangeGhostFaceData();    // 8
+  void stepContactForces();            // 9
+  void stepFaceBoundaryConditions();   // 10
+  void stepNodeBoundaryConditions();   // 11
+  void stepUpdateNodes();              // 12
+
+  Deck _deck;
+  HostMesh _mesh;
+  std::vector<HostFace> _external_faces;
+  std::map<std::string, std::vector<Index>> _node_sets;
+  std::map<std::string, std::vector<HostFace>> _face_sets;
+
+  NodeFields _nodes;
+  ElementFields _elems;
+  NodeCorners _corners;
+  std::vector<ElementGroup> _groups;
+  DeviceView<MaterialParams *> _materials;
+  std::vector<MaterialParams> _materials_host;
+  BoundaryConditions _bc;
+  ElementControls _controls;
+  std::vector<GaugeSlot> _gauges;
+  IndexView _gauge_id;       ///< device copies of the gauge slots
+  IndexView _gauge_code;     ///< quantity code, + 100 for element quantities
+  std::vector<int> _part_spec;                 ///< deck parts[] entry of every mesh part
+  std::vector<Index> _host_to_device_element;  ///< mesh element id -> device element id
+
+  Real _time = 0;
+  Real _dt = 0;
+  Real _dt_next = 0;
+  long _cycle = 0;
+  Real _external_work = 0;
+  Real _kinetic_mid = 0;     ///< 1/2 sum m v^n.v^{n+1} of the last step
+  Real _initial_energy = 0;
+  Real _energy_scale = 0;    ///< largest |energy| seen, the balance error's reference
+  NodeSums _last_sums;
+  StepTimers _timers;
+};
+
+} // namespace scpdyn

@@ -1,0 +1,110 @@
+// scpdyn command line: scpdyn DECK.yaml [-o DIR]; Kokkos flags (--kokkos-...) pass through.
+// Exit status: 0 done, 1 internal error, 2 input error, 3 the run failed (outputs kept).
+#include "driver/Solver.hpp"
+
+#include <Kokkos_Core.hpp>
+#include <mpi.h>
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace
+{
+const char *kUsage =
+    "usage: scpdyn DECK.yaml [-o DIR] [--kokkos-... options]\n"
+    "  Explicit Lagrangian finite elements with Simple Common Plane contact.\n"
+    "  DECK.yaml   input deck (keys: docs/input.md)\n"
+    "  -o DIR      output directory (default: output.directory of the deck, else out/<deck name>)\n"
+    "  --help      this text;  --version  the version\n"
+    "  Threads: OMP_NUM_THREADS=T (or --kokkos-num-threads=T); bind with OMP_PROC_BIND=spread.\n"
+    "  Outputs: fields.xmf/.h5 (ParaView), history.csv, gauges.csv, summary.json,\n"
+    "           deck.resolved.yaml.\n";
+
+std::string deckStem(const std::string &path)
+{
+  std::string name = path.substr(path.find_last_of('/') + 1);
+  const auto dot = name.find_last_of('.');
+  return dot == std::string::npos ? name : name.substr(0, dot);
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  for (int i = 1; i < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h"))
+    {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+    if (!std::strcmp(argv[i], "--version"))
+    {
+      std::printf("scpdyn %s\n", SCPDYN_VERSION);
+      return 0;
+    }
+  }
+  MPI_Init(&argc, &argv);
+  Kokkos::initialize(argc, argv);
+  int status = 0;
+  {
+    std::string deck_path, out_dir;
+    for (int i = 1; i < argc; ++i)
+    {
+      const std::string a = argv[i];
+      if (a == "-o" && i + 1 < argc)
+        out_dir = argv[++i];
+      else if (!a.empty() && a[0] == '-')
+      {
+        std::fprintf(stderr, "scpdyn: unknown option '%s'\n%s", a.c_str(), kUsage);
+        status = 2;
+      }
+      else if (deck_path.empty())
+        deck_path = a;
+      else
+      {
+        std::fprintf(stderr, "scpdyn: more than one deck given ('%s')\n", a.c_str());
+        status = 2;
+      }
+    }
+    if (status == 0 && deck_path.empty())
+    {
+      std::fputs(kUsage, stderr);
+      status = 2;
+    }
+    if (status == 0)
+    {
+      try
+      {
+        const scpdyn::Deck deck = scpdyn::parseDeck(deck_path);
+        if (out_dir.empty())
+          out_dir = deck.output_dir.empty() ? "out/" + deckStem(deck_path) : deck.output_dir;
+        scpdyn::Solver solver(deck);
+        std::fprintf(stderr, "scpdyn: %s: %d nodes, %d elements, %d threads -> %s\n",
+                     deck_path.c_str(), solver.nodes().count, solver.elements().count,
+                     int(scpdyn::ExecSpace().concurrency()), out_dir.c_str());
+        const long cycles = solver.run(out_dir);
+        std::printf("scpdyn: done, %ld cycles to t = %.6e s; results in %s\n", cycles,
+                    solver.time(), out_dir.c_str());
+      }
+      catch (const scpdyn::InputError &e)
+      {
+        std::fprintf(stderr, "scpdyn: input error: %s\n", e.what());
+        status = 2;
+      }
+      catch (const scpdyn::SimulationError &e)
+      {
+        std::fprintf(stderr, "scpdyn: run stopped: %s (outputs so far are kept)\n", e.what());
+        status = 3;
+      }
+      catch (const std::exception &e)
+      {
+        std::fprintf(stderr, "scpdyn: error: %s\n", e.what());
+        status = 1;
+      }
+    }
+  }
+  Kokkos::finalize();
+  MPI_Finalize();
+  return status;
+}

@@ -1,0 +1,109 @@
+#pragma once
+/// \file Hourglass.hpp
+/// \brief Flanagan-Belytschko hourglass control of the one-point Quad4 and Hex8
+/// (Flanagan & Belytschko 1981, IJNME 17:679-706).
+///
+/// gamma_ka = Gamma_ka - (sum_b Gamma_kb x_bi) B_ai is orthogonal to every linear field, so
+/// rigid motion and uniform strain excite no hourglass force. Hourglass rates
+/// qdot_ki = sum_a gamma_ka v_ai. Forces f_ai = -sum_k gamma_ka Q_ki with
+///  - viscous:   Q_ki = kappa/4 rho c Vs qdot_ki,  Vs = V^(2/3) (3D) or V (2D per metre/radian);
+///  - stiffness: Q_ki += kappa M V (B:B) / n_nodes * qdot_ki dt (M = rho c^2), stored per
+///    element and rotated with the material (kept in the element's hourglass slots).
+#include "core/Types.hpp"
+#include "element/ElementKinematics.hpp"
+
+namespace scpdyn
+{
+
+enum class HourglassType : int
+{
+  Viscous = 0,
+  Stiffness = 1
+};
+
+template <ElementType T>
+struct HourglassModes
+{
+  static constexpr int count = T == ElementType::Hex8 ? 4 : T == ElementType::Quad4 ? 1 : 0;
+};
+
+/// \brief Base vector Gamma_k at node a.
+template <ElementType T>
+KOKKOS_INLINE_FUNCTION Real hourglassBase(int k, int a)
+{
+  if constexpr (T == ElementType::Quad4)
+  {
+    (void)k;
+    constexpr Real g[4] = {1, -1, 1, -1};
+    return g[a];
+  }
+  else
+  {
+    constexpr Real g[4][8] = {{1, 1, -1, -1, -1, -1, 1, 1},
+                              {1, -1, -1, 1, -1, 1, 1, -1},
+                              {1, -1, 1, -1, 1, -1, 1, -1},
+                              {-1, 1, -1, 1, 1, -1, 1, -1}};
+    return g[k][a];
+  }
+}
+
+/// \brief Hourglass forces (added to f) for one element. Q holds the stiffness-form
+/// resistances (count x 3), updated in place. Returns the hourglass power -sum f.v [W].
+template <ElementType T>
+KOKKOS_INLINE_FUNCTION Real hourglassForces(const Real x[][3], const Real v[][3], const Real B[][3],
+                                            Real V, Real rho, Real c, HourglassType type,
+                                            Real kappa, Real dt, Real Q[kHourglassSize],
+                                            Real f[][3])
+{
+  constexpr int N = ElementTraits<T>::nodes;
+  constexpr int M = HourglassModes<T>::count;
+  constexpr int D = ElementTraits<T>::dim;
+  Real power = 0;
+  if constexpr (M > 0)
+  {
+    Real BB = 0;
+    for (int a = 0; a < N; ++a)
+      for (int i = 0; i < D; ++i)
+        BB += B[a][i] * B[a][i];
+    const Real Vs = D == 3 ? kmath::cbrt(V * V) : V;
+    const Real visc = 0.25 * kappa * rho * c * Vs;
+    const Real stiff = kappa * rho * c * c * V * BB / N * dt;
+    for (int k = 0; k < M; ++k)
+    {
+      Real gx[D];
+      for (int i = 0; i < D; ++i)
+      {
+        gx[i] = 0;
+        for (int b = 0; b < N; ++b)
+          gx[i] += hourglassBase<T>(k, b) * x[b][i];
+      }
+      Real gamma[N];
+      for (int a = 0; a < N; ++a)
+      {
+        gamma[a] = hourglassBase<T>(k, a);
+        for (int i = 0; i < D; ++i)
+          gamma[a] -= gx[i] * B[a][i];
+      }
+      for (int i = 0; i < D; ++i)
+      {
+        Real qdot = 0;
+        for (int a = 0; a < N; ++a)
+          qdot += gamma[a] * v[a][i];
+        Real Qki;
+        if (type == HourglassType::Viscous)
+          Qki = visc * qdot;
+        else
+        {
+          Q[3 * k + i] += stiff * qdot;
+          Qki = Q[3 * k + i];
+        }
+        power += Qki * qdot;
+        for (int a = 0; a < N; ++a)
+          f[a][i] -= gamma[a] * Qki;
+      }
+    }
+  }
+  return power;
+}
+
+} // namespace scpdyn

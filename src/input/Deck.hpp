@@ -1,0 +1,141 @@
+#pragma once
+/// \file Deck.hpp
+/// \brief The typed, validated input deck. Parsed once from YAML (DeckParser.cpp); nothing in
+/// the cycle reads YAML. All values SI. Every key is documented in docs/input.md.
+#include "core/Types.hpp"
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace scpdyn
+{
+
+/// \brief Thrown for any input error; `what()` names the key path (and line when known).
+/// main() prints it and exits with status 2.
+struct InputError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// \brief Piecewise-linear time function (constant beyond its ends).
+struct TimeFunction
+{
+  std::string name;
+  std::vector<Real> t, value;
+};
+
+/// \brief A material as written in the deck: model name plus numeric parameters. The material
+/// room (material/MaterialLibrary.cpp) knows which keys each model takes, checks them and turns
+/// them into the POD MaterialParams the kernels use.
+struct MaterialSpec
+{
+  std::string name;
+  std::string model = "elastic";     ///< elastic | elastic_plastic | ... (docs/input.md)
+  std::string eos = "linear";        ///< linear | mie_gruneisen | ...
+  std::map<std::string, Real> values;   ///< every numeric key of the material (and of its eos:
+                                        ///< eos keys are stored as "eos.<key>")
+  std::map<std::string, int> lines;     ///< YAML line of each key, for error messages
+  int index = 0;                         ///< position in the deck's materials list
+  int line = 0;
+};
+
+/// \brief How a part's mesh is made.
+struct MeshSpec
+{
+  std::string type = "block";      ///< block | brick_wall | gmsh
+  std::string element = "quad4";   ///< line2 | quad4 | hex8 | tet4 (block, brick_wall)
+  std::array<int, 3> elements{{1, 1, 1}};  ///< block: cells per direction
+  std::array<Real, 3> origin{{0, 0, 0}};
+  std::array<Real, 3> size{{0, 0, 0}};
+  // brick_wall: bricks of `brick_size`, `elements` cells per brick, `count` bricks per direction,
+  // every other course (row along y in 2D, z in 3D) shifted along x by stagger * brick length
+  std::array<Real, 3> brick_size{{0, 0, 0}};
+  std::array<int, 3> count{{1, 1, 1}};
+  Real stagger = 0.5;
+  std::string file; ///< gmsh: path to .msh 4.1 ASCII (relative to the deck)
+};
+
+struct PartSpec
+{
+  std::string name;
+  std::string material;
+  MeshSpec mesh;
+  std::array<Real, 3> initial_velocity{{0, 0, 0}};
+  bool merge_nodes = false; ///< merge nodes coincident with other merge_nodes parts
+};
+
+/// \brief A named set selected geometrically or by part.
+struct SetSpec
+{
+  std::string name;
+  std::string part;                      ///< all nodes/external faces of this part (or prefix*)
+  bool has_box = false;
+  std::array<Real, 3> box_min{{0, 0, 0}}, box_max{{0, 0, 0}}; ///< inclusive, with tolerance
+};
+
+struct BoundaryConditionSpec
+{
+  std::string type;     ///< velocity | force | pressure
+  std::string set;      ///< node set (velocity, force) or face set (pressure)
+  int component = -1;   ///< velocity: 0,1,2 for x,y,z
+  Real value = 0;       ///< velocity (m/s) or pressure (Pa)
+  std::array<Real, 3> vector{{0, 0, 0}}; ///< force (N) per node
+  std::string function; ///< optional TimeFunction name multiplying the value
+};
+
+struct GaugeSpec
+{
+  std::string name;
+  std::string kind = "node"; ///< node | element
+  Index id = -1;             ///< node or element id (0-based), or -1 when `point` is given
+  bool has_point = false;
+  std::array<Real, 3> point{{0, 0, 0}}; ///< nearest node / containing-or-nearest element
+  std::vector<std::string> quantities;  ///< see docs/input.md
+};
+
+struct Deck
+{
+  std::string title;
+  std::string path;          ///< deck file path
+  int dimension = 2;
+  Geometry2D geometry = Geometry2D::PlaneStrain;
+
+  // time
+  Real end_time = 0;
+  Real courant = 0.5;        ///< S in (0, 1]
+  Real dt_max = 1e30;
+  long max_cycles = -1;
+
+  // numerics
+  Real hourglass_coefficient = 0.05;
+  std::string hourglass_type = "viscous"; ///< viscous | stiffness
+  Real bulk_viscosity_linear = 0.06;
+  Real bulk_viscosity_quadratic = 1.5;
+  std::string scatter = "atomic";         ///< atomic | gather
+  std::array<Real, 3> gravity{{0, 0, 0}};
+
+  // output
+  std::string output_dir;    ///< default out/<deck stem>
+  Real field_interval = 0;   ///< 0: first and last only
+  Real history_interval = 0; ///< 0: every cycle
+  Real progress_interval = 2.0; ///< wall seconds between progress lines
+
+  std::vector<MaterialSpec> materials;
+  std::vector<PartSpec> parts;
+  std::vector<SetSpec> node_sets;
+  std::vector<SetSpec> face_sets;
+  std::vector<TimeFunction> functions;
+  std::vector<BoundaryConditionSpec> boundary_conditions;
+  std::vector<GaugeSpec> gauges;
+};
+
+/// \brief Parse and validate a deck; throws InputError naming key path and line.
+Deck parseDeck(const std::string &path);
+/// \brief Parse from a YAML string (tests); `path` only names the source in messages.
+Deck parseDeckString(const std::string &yaml_text, const std::string &path);
+/// \brief Write the resolved deck (all defaults filled in) as YAML.
+void writeResolvedDeck(const Deck &deck, const std::string &file);
+
+} // namespace scpdyn

@@ -1,0 +1,298 @@
+/// \file DeckParser.cpp
+/// \brief YAML deck -> typed, validated Deck. Every key of docs/input.md is read here; the
+/// schema's "which keys may appear where" lives in the key lists passed to YamlValue::map.
+#include "input/DeckSections.hpp"
+#include "input/YamlReader.hpp"
+#include "material/MaterialLibrary.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace scpdyn
+{
+namespace Impl
+{
+
+bool isPositive(Real x) { return x > 0; }
+bool isNonNegative(Real x) { return x >= 0; }
+
+Real readReal(const YamlMap &m, const std::string &key, Real fallback, bool (*ok)(Real),
+              const char *expected)
+{
+  if (!m.has(key))
+    return fallback;
+  const YamlValue v = m[key];
+  const Real x = v.real();
+  if (ok && !ok(x))
+    v.fail(std::string("must be ") + expected + ", got " + v.text());
+  return x;
+}
+
+Real requireReal(const YamlMap &m, const std::string &key, bool (*ok)(Real), const char *expected)
+{
+  if (!m.has(key))
+    m.missing(key);
+  return readReal(m, key, 0, ok, expected);
+}
+
+void claimName(std::map<std::string, int> &seen, const YamlValue &v, const std::string &name)
+{
+  const auto it = seen.find(name);
+  if (it != seen.end())
+    v.fail("duplicate name '" + name + "' (already used on line " + std::to_string(it->second) +
+           ")");
+  seen[name] = v.line();
+}
+
+void checkReference(const YamlValue &v, const std::string &name, const std::string &what,
+                    const std::map<std::string, int> &defined)
+{
+  if (defined.count(name))
+    return;
+  std::vector<std::string> names;
+  for (const auto &kv : defined)
+    names.push_back(kv.first);
+  if (names.empty())
+    v.fail("unknown " + what + " '" + name + "' (none is defined)");
+  v.fail("unknown " + what + " '" + name + "'" + suggestion(name, names));
+}
+
+void restrictKeys(const YamlMap &m, const std::vector<std::string> &allowed,
+                  const std::string &context)
+{
+  for (const auto &e : m.entries())
+    if (std::find(allowed.begin(), allowed.end(), e.key) == allowed.end())
+      m[e.key].fail("unknown key '" + e.key + "' for " + context + suggestion(e.key, allowed));
+}
+
+} // namespace Impl
+
+namespace
+{
+using namespace Impl;
+namespace fs = std::filesystem;
+
+void parseTime(const YamlMap &root, Deck &deck)
+{
+  if (!root.has("time"))
+    root.missing("time");
+  const YamlMap t = root["time"].map({"end", "courant", "dt_max", "max_cycles"});
+  deck.end_time = requireReal(t, "end", isPositive, "> 0");
+  deck.courant = readReal(
+      t, "courant", deck.courant, [](Real s) { return s > 0 && s <= 1; }, "in (0, 1]");
+  deck.dt_max = readReal(t, "dt_max", deck.dt_max, isPositive, "> 0");
+  if (t.has("max_cycles"))
+  {
+    deck.max_cycles = t["max_cycles"].integer();
+    if (deck.max_cycles <= 0)
+      t["max_cycles"].fail("must be an integer > 0, got " + t["max_cycles"].text());
+  }
+}
+
+void parseNumerics(const YamlMap &root, Deck &deck)
+{
+  if (!root.has("numerics"))
+    return;
+  const YamlMap n = root["numerics"].map({"hourglass", "bulk_viscosity", "scatter"});
+  if (n.has("hourglass"))
+  {
+    const YamlMap h = n["hourglass"].map({"type", "coefficient"});
+    deck.hourglass_type = h.choice("type", {"viscous", "stiffness"}, deck.hourglass_type);
+    deck.hourglass_coefficient =
+        readReal(h, "coefficient", deck.hourglass_coefficient, isNonNegative, ">= 0");
+  }
+  if (n.has("bulk_viscosity"))
+  {
+    const YamlMap q = n["bulk_viscosity"].map({"linear", "quadratic"});
+    deck.bulk_viscosity_linear =
+        readReal(q, "linear", deck.bulk_viscosity_linear, isNonNegative, ">= 0");
+    deck.bulk_viscosity_quadratic =
+        readReal(q, "quadratic", deck.bulk_viscosity_quadratic, isNonNegative, ">= 0");
+  }
+  deck.scatter = n.choice("scatter", {"atomic", "gather"}, deck.scatter);
+}
+
+void parseOutput(const YamlMap &root, Deck &deck, const std::string &stem)
+{
+  deck.output_dir = "out/" + stem;
+  if (!root.has("output"))
+    return;
+  const YamlMap o = root["output"].map(
+      {"directory", "field_interval", "history_interval", "progress_interval"});
+  deck.output_dir = o.string("directory", deck.output_dir);
+  deck.field_interval = readReal(o, "field_interval", 0, isNonNegative, ">= 0");
+  deck.history_interval = readReal(o, "history_interval", 0, isNonNegative, ">= 0");
+  deck.progress_interval =
+      readReal(o, "progress_interval", deck.progress_interval, isPositive, "> 0");
+}
+
+std::map<std::string, int> parseFunctions(const YamlMap &root, Deck &deck)
+{
+  std::map<std::string, int> names;
+  if (!root.has("functions"))
+    return names;
+  for (const YamlValue &item : root["functions"].list())
+  {
+    const YamlMap f = item.map({"name", "points"});
+    TimeFunction fn;
+    fn.name = f["name"].string();
+    claimName(names, f["name"], fn.name);
+    if (!f.has("points"))
+      f.missing("points");
+    const auto points = f["points"].list(1);
+    for (std::size_t i = 0; i < points.size(); ++i)
+    {
+      const auto pair = points[i].list();
+      if (pair.size() != 2)
+        points[i].fail("expected a [t, value] pair, got " + std::to_string(pair.size()) +
+                       " entries");
+      const Real t = pair[0].real(), v = pair[1].real();
+      if (i > 0 && !(t > fn.t.back()))
+        pair[0].fail("times must increase strictly: t = " + pair[0].text() + " follows t = " +
+                     formatReal(fn.t.back()));
+      fn.t.push_back(t);
+      fn.value.push_back(v);
+    }
+    deck.functions.push_back(fn);
+  }
+  return names;
+}
+
+std::map<std::string, int> parseMaterials(const YamlMap &root, Deck &deck)
+{
+  std::map<std::string, int> names;
+  if (!root.has("materials"))
+    root.missing("materials");
+  const auto items = root["materials"].list(1);
+  for (std::size_t i = 0; i < items.size(); ++i)
+  {
+    // Model keys are open here; validateMaterialSpec knows which ones each model takes.
+    const YamlMap m = items[i].openMap();
+    MaterialSpec spec;
+    spec.index = static_cast<int>(i);
+    spec.line = items[i].line();
+    spec.name = m["name"].string();
+    claimName(names, m["name"], spec.name);
+    for (const auto &e : m.entries())
+    {
+      const YamlValue v = m[e.key];
+      spec.lines[e.key] = e.line;
+      if (e.key == "name")
+        continue;
+      if (e.key == "model")
+        spec.model = v.string();
+      else if (e.key == "eos")
+      {
+        const YamlMap eos = v.openMap();
+        for (const auto &ee : eos.entries())
+        {
+          const YamlValue ev = eos[ee.key];
+          spec.lines["eos." + ee.key] = ee.line;
+          if (ee.key == "type")
+            spec.eos = ev.string();
+          else
+            spec.values["eos." + ee.key] = ev.real();
+        }
+      }
+      else
+        spec.values[e.key] = v.real();
+    }
+    validateMaterialSpec(spec);
+    deck.materials.push_back(spec);
+  }
+  return names;
+}
+
+} // namespace
+
+Deck parseDeckString(const std::string &yaml_text, const std::string &path)
+{
+  std::vector<YAML::Node> docs;
+  try
+  {
+    docs = YAML::LoadAll(yaml_text);
+  }
+  catch (const YAML::Exception &e)
+  {
+    const std::string line =
+        e.mark.is_null() ? "" : " (line " + std::to_string(e.mark.line + 1) + ")";
+    throw InputError(path + ": <document>" + line + ": YAML syntax error: " + e.msg);
+  }
+  try
+  {
+    if (docs.size() > 1)
+      YamlValue(docs[1], "", docs[1].Mark().line + 1)
+          .fail("found a second YAML document; a deck is one document");
+    if (docs.empty() || docs[0].IsNull())
+      YamlValue(YAML::Node(), "", 1)
+          .fail("the deck is empty; expected a mapping with at least dimension, time, "
+                "materials and parts");
+    Deck deck;
+    deck.path = path;
+    const std::string stem = fs::path(path).stem().string();
+    fs::path dir = fs::path(path).parent_path();
+    if (dir.empty())
+      dir = ".";
+
+    const YamlMap root = YamlValue(docs[0], "", docs[0].Mark().line + 1)
+                             .map({"title", "dimension", "geometry", "time", "numerics",
+                                   "gravity", "output", "materials", "parts", "node_sets",
+                                   "face_sets", "functions", "boundary_conditions", "gauges"});
+    deck.title = root.string("title", stem);
+    if (!root.has("dimension"))
+      root.missing("dimension");
+    const long dim = root["dimension"].integer();
+    if (dim < 1 || dim > 3)
+      root["dimension"].fail("must be 1, 2 or 3, got " + root["dimension"].text());
+    deck.dimension = static_cast<int>(dim);
+    if (root.has("geometry"))
+    {
+      if (deck.dimension != 2)
+        root["geometry"].fail("only applies to dimension 2 (this deck has dimension " +
+                              std::to_string(deck.dimension) + ")");
+      deck.geometry = root["geometry"].choice({"plane_strain", "axisymmetric"}) == "axisymmetric"
+                          ? Geometry2D::Axisymmetric
+                          : Geometry2D::PlaneStrain;
+    }
+    parseTime(root, deck);
+    parseNumerics(root, deck);
+    if (root.has("gravity"))
+      deck.gravity = root["gravity"].realVector(deck.dimension);
+    parseOutput(root, deck, stem);
+
+    DeckNames names;
+    names.functions = parseFunctions(root, deck);
+    names.materials = parseMaterials(root, deck);
+    parseParts(root, deck, names, dir);
+    parseSetsAndConditions(root, deck, names);
+    parseGauges(root, deck);
+    return deck;
+  }
+  catch (const InputError &e)
+  {
+    throw InputError(path + ": " + e.what());
+  }
+  catch (const YAML::Exception &e)
+  {
+    throw InputError(path + ": <document>: " + e.what());
+  }
+}
+
+Deck parseDeck(const std::string &path)
+{
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    throw InputError(path + ": <document>: cannot read the deck: no such file");
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(path + ": <document>: cannot read the deck: not a regular file");
+  std::ifstream in(path);
+  if (!in)
+    throw InputError(path + ": <document>: cannot open the deck for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseDeckString(text.str(), path);
+}
+
+} // namespace scpdyn

@@ -1,0 +1,249 @@
+/// \file DeckSections.cpp
+/// \brief Deck sections that refer to each other: parts (meshes, materials), node/face sets,
+/// boundary conditions and gauges.
+#include "input/DeckSections.hpp"
+
+#include <algorithm>
+
+namespace scpdyn
+{
+namespace Impl
+{
+namespace
+{
+namespace fs = std::filesystem;
+
+const char *const kDefaultElement[] = {"", "line2", "quad4", "hex8"};
+
+int elementDimension(const std::string &element)
+{
+  return element == "line2" ? 1 : element == "quad4" ? 2 : 3;
+}
+
+std::array<Real, 3> positiveVector(const YamlMap &m, const std::string &key, int dim)
+{
+  const YamlValue v = m[key];
+  const std::array<Real, 3> x = v.realVector(dim);
+  const auto items = v.list();
+  for (int i = 0; i < dim; ++i)
+    if (!(x[i] > 0))
+      items[i].fail("must be > 0, got " + items[i].text());
+  return x;
+}
+
+MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
+{
+  const YamlMap m = value.map({"type", "element", "elements", "origin", "size", "brick_size",
+                               "count", "stagger", "file"});
+  MeshSpec mesh;
+  mesh.type = m.choice("type", {"block", "brick_wall", "gmsh"}, "block");
+  if (mesh.type == "gmsh")
+  {
+    restrictKeys(m, {"type", "file"}, "mesh type 'gmsh'");
+    mesh.element = ""; // the element types come from the file
+    const YamlValue f = m["file"];
+    const fs::path file = fs::absolute(deck_dir / f.string()).lexically_normal();
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec))
+      f.fail("gmsh file '" + f.string() + "' not found (looked for " + file.string() + ")");
+    mesh.file = file.string();
+    return mesh;
+  }
+  if (mesh.type == "block")
+    restrictKeys(m, {"type", "element", "elements", "origin", "size"}, "mesh type 'block'");
+  else
+    restrictKeys(m, {"type", "element", "elements", "origin", "brick_size", "count", "stagger"},
+                 "mesh type 'brick_wall'");
+
+  mesh.element = m.choice("element", {"line2", "quad4", "hex8", "tet4"}, kDefaultElement[dim]);
+  if (elementDimension(mesh.element) != dim)
+    m["element"].fail("element '" + mesh.element + "' is " +
+                      std::to_string(elementDimension(mesh.element)) +
+                      "-dimensional but the deck has dimension " + std::to_string(dim) +
+                      " (expected " + (dim == 3 ? "hex8 or tet4" : kDefaultElement[dim]) + ")");
+  if (m.has("origin"))
+    mesh.origin = m["origin"].realVector(dim);
+  if (mesh.type == "block")
+  {
+    mesh.elements = m["elements"].intVector(dim, 1, 1);
+    mesh.size = positiveVector(m, "size", dim);
+    return mesh;
+  }
+  if (m.has("elements"))
+    mesh.elements = m["elements"].intVector(dim, 1, 1);
+  mesh.brick_size = positiveVector(m, "brick_size", dim);
+  mesh.count = m["count"].intVector(dim, 1, 1);
+  mesh.stagger = readReal(
+      m, "stagger", mesh.stagger, [](Real s) { return s >= 0 && s < 1; }, "in [0, 1)");
+  return mesh;
+}
+
+void parseSets(const YamlMap &root, const std::string &key, int dim, const DeckNames &names,
+               std::map<std::string, int> &seen, std::vector<SetSpec> &sets)
+{
+  if (!root.has(key))
+    return;
+  for (const YamlValue &item : root[key].list())
+  {
+    const YamlMap m = item.map({"name", "part", "box"});
+    SetSpec set;
+    set.name = m["name"].string();
+    claimName(seen, m["name"], set.name);
+    if (m.exactlyOne({"part", "box"}) == "part")
+    {
+      const YamlValue p = m["part"];
+      set.part = p.string();
+      if (set.part.back() == '*')
+      {
+        const std::string prefix = set.part.substr(0, set.part.size() - 1);
+        if (std::none_of(names.parts.begin(), names.parts.end(),
+                         [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
+          p.fail("no part name starts with '" + prefix + "'");
+      }
+      else
+        checkReference(p, set.part, "part", names.parts);
+    }
+    else
+    {
+      const YamlMap box = m["box"].map({"min", "max"});
+      set.has_box = true;
+      set.box_min = box["min"].realVector(dim);
+      set.box_max = box["max"].realVector(dim);
+      const auto max_items = box["max"].list();
+      for (int i = 0; i < dim; ++i)
+        if (set.box_max[i] < set.box_min[i])
+          max_items[i].fail("box max " + max_items[i].text() + " is below min " +
+                            formatReal(set.box_min[i]) + " (expected min <= max)");
+    }
+    sets.push_back(set);
+  }
+}
+
+void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool check_sets,
+                    BoundaryConditionSpec &bc)
+{
+  const YamlMap m = item.openMap();
+  bc.type = m["type"].choice({"velocity", "force", "pressure"});
+  const std::string set_key = bc.type == "pressure" ? "face_set" : "node_set";
+  if (bc.type == "velocity")
+    restrictKeys(m, {"type", "node_set", "component", "value", "function"},
+                 "boundary condition type 'velocity'");
+  else
+    restrictKeys(m, {"type", set_key, "value", "function"},
+                 "boundary condition type '" + bc.type + "'");
+
+  bc.set = m[set_key].string();
+  if (check_sets) // with gmsh meshes, sets may also come from the mesh file: the driver checks
+    checkReference(m[set_key], bc.set, set_key == "face_set" ? "face set" : "node set",
+                   set_key == "face_set" ? names.face_sets : names.node_sets);
+  if (bc.type == "velocity")
+  {
+    const std::string c = m["component"].choice({"x", "y", "z"});
+    bc.component = c == "x" ? 0 : c == "y" ? 1 : 2;
+    if (bc.component >= dim)
+      m["component"].fail("component '" + c + "' does not exist in dimension " +
+                          std::to_string(dim) + " (expected " + (dim == 1 ? "x" : "x or y") +
+                          ")");
+  }
+  if (bc.type == "force")
+    bc.vector = m["value"].realVector(dim);
+  else
+    bc.value = requireReal(m, "value", nullptr, "");
+  if (m.has("function"))
+  {
+    bc.function = m["function"].string();
+    checkReference(m["function"], bc.function, "function", names.functions);
+  }
+}
+
+const std::vector<std::string> kNodeQuantities = {"x", "y", "z", "dx", "dy", "dz", "vx", "vy", "vz"};
+const std::vector<std::string> kElementQuantities = {
+    "sxx",      "syy",     "szz",            "sxy",    "syz", "szx",
+    "pressure", "density", "plastic_strain", "energy", "q"};
+
+} // namespace
+
+void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::path &deck_dir)
+{
+  if (!root.has("parts"))
+    root.missing("parts");
+  for (const YamlValue &item : root["parts"].list(1))
+  {
+    const YamlMap m = item.map({"name", "material", "mesh", "initial_velocity", "merge_nodes"});
+    PartSpec part;
+    part.name = m["name"].string();
+    claimName(names.parts, m["name"], part.name);
+    part.material = m["material"].string();
+    checkReference(m["material"], part.material, "material", names.materials);
+    part.mesh = parseMesh(m["mesh"], deck.dimension, deck_dir);
+    if (m.has("initial_velocity"))
+      part.initial_velocity = m["initial_velocity"].realVector(deck.dimension);
+    part.merge_nodes = m.boolean("merge_nodes", false);
+    deck.parts.push_back(part);
+  }
+}
+
+void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names)
+{
+  parseSets(root, "node_sets", deck.dimension, names, names.node_sets, deck.node_sets);
+  parseSets(root, "face_sets", deck.dimension, names, names.face_sets, deck.face_sets);
+  if (!root.has("boundary_conditions"))
+    return;
+  const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(),
+                                       [](const PartSpec &p) { return p.mesh.type == "gmsh"; });
+  for (const YamlValue &item : root["boundary_conditions"].list())
+  {
+    BoundaryConditionSpec bc;
+    parseCondition(item, deck.dimension, names, check_sets, bc);
+    deck.boundary_conditions.push_back(bc);
+  }
+}
+
+void parseGauges(const YamlMap &root, Deck &deck)
+{
+  if (!root.has("gauges"))
+    return;
+  std::map<std::string, int> seen;
+  for (const YamlValue &item : root["gauges"].list())
+  {
+    const YamlMap m = item.map({"name", "node", "element", "point", "kind", "quantities"});
+    GaugeSpec g;
+    g.name = m["name"].string();
+    claimName(seen, m["name"], g.name);
+    const std::string where = m.exactlyOne({"node", "element", "point"});
+    if (where == "point")
+    {
+      g.has_point = true;
+      g.point = m["point"].realVector(deck.dimension);
+      g.kind = m.choice("kind", {"node", "element"}, "node");
+    }
+    else
+    {
+      if (m.has("kind"))
+        m["kind"].fail("only used with 'point' (a gauge given by '" + where +
+                       "' is a " + where + " gauge)");
+      g.kind = where;
+      const long id = m[where].integer();
+      if (id < 0)
+        m[where].fail("must be an id >= 0, got " + m[where].text());
+      g.id = static_cast<Index>(id);
+    }
+    const auto &mine = g.kind == "node" ? kNodeQuantities : kElementQuantities;
+    const auto &other = g.kind == "node" ? kElementQuantities : kNodeQuantities;
+    for (const YamlValue &q : m["quantities"].list(1))
+    {
+      const std::string name = q.string();
+      if (std::find(other.begin(), other.end(), name) != other.end())
+        q.fail("'" + name + "' is not a " + g.kind + " quantity (" + g.kind +
+               " quantities: " + joined(mine) + ")");
+      q.choice(mine);
+      if (std::find(g.quantities.begin(), g.quantities.end(), name) != g.quantities.end())
+        q.fail("quantity '" + name + "' is listed twice");
+      g.quantities.push_back(name);
+    }
+    deck.gauges.push_back(g);
+  }
+}
+
+} // namespace Impl
+} // namespace scpdyn

@@ -1,0 +1,50 @@
+#pragma once
+/// \file DeckSections.hpp
+/// \brief Internal to the deck parser: the section readers split across DeckParser.cpp and
+/// DeckSections.cpp, and the small checks they share. Not for use outside src/input/.
+#include "input/Deck.hpp"
+#include "input/YamlReader.hpp"
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace scpdyn
+{
+namespace Impl
+{
+
+/// \brief Names defined so far, each with its YAML line (for references and duplicates).
+struct DeckNames
+{
+  std::map<std::string, int> functions, materials, parts, node_sets, face_sets;
+};
+
+bool isPositive(Real x);
+bool isNonNegative(Real x);
+
+/// \brief Optional real with a range check (`ok` may be null); `expected` reads "> 0" etc.
+Real readReal(const YamlMap &m, const std::string &key, Real fallback, bool (*ok)(Real),
+              const char *expected);
+/// \brief Required real with a range check.
+Real requireReal(const YamlMap &m, const std::string &key, bool (*ok)(Real), const char *expected);
+/// \brief Record a name; throws when it was already used in the same list.
+void claimName(std::map<std::string, int> &seen, const YamlValue &v, const std::string &name);
+/// \brief Throw unless `name` is in `defined` (suggesting the closest defined name).
+void checkReference(const YamlValue &v, const std::string &name, const std::string &what,
+                    const std::map<std::string, int> &defined);
+/// \brief Throw for a key of `m` that is not in `allowed` (for keys that depend on a type).
+void restrictKeys(const YamlMap &m, const std::vector<std::string> &allowed,
+                  const std::string &context);
+
+/// \brief parts[] (with meshes); gmsh files are resolved against `deck_dir`.
+void parseParts(const YamlMap &root, Deck &deck, DeckNames &names,
+                const std::filesystem::path &deck_dir);
+/// \brief node_sets[], face_sets[], boundary_conditions[].
+void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names);
+/// \brief gauges[].
+void parseGauges(const YamlMap &root, Deck &deck);
+
+} // namespace Impl
+} // namespace scpdyn

@@ -1,0 +1,241 @@
+/// \file DeckWriter.cpp
+/// \brief The resolved deck: every field of the Deck, defaults included, in the structure of
+/// docs/input.md, so that parsing it gives back the same Deck (tests/input checks this).
+#include "input/Deck.hpp"
+#include "input/YamlReader.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+namespace scpdyn
+{
+namespace
+{
+
+using Impl::formatReal;
+
+// Reals go out as their shortest exact decimal text (a plain scalar), so that they read back
+// bit for bit; strings are always double-quoted, so a title like "2" or "yes" stays a string.
+YAML::Emitter &real(YAML::Emitter &out, Real x) { return out << formatReal(x); }
+YAML::Emitter &text(YAML::Emitter &out, const std::string &s)
+{
+  return out << YAML::DoubleQuoted << s;
+}
+
+// An empty list reads better as "key: []" than as a block list with no items.
+void beginList(YAML::Emitter &out, const char *key, bool empty)
+{
+  out << YAML::Key << key << YAML::Value;
+  if (empty)
+    out << YAML::Flow;
+  out << YAML::BeginSeq;
+}
+
+template <class T>
+void vector(YAML::Emitter &out, const char *key, const std::array<T, 3> &v, int n)
+{
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (int i = 0; i < n; ++i)
+  {
+    if constexpr (std::is_integral_v<T>)
+      out << v[i];
+    else
+      real(out, v[i]);
+  }
+  out << YAML::EndSeq;
+}
+
+void writeMesh(YAML::Emitter &out, const MeshSpec &m, int dim)
+{
+  out << YAML::Key << "mesh" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "type" << YAML::Value << m.type;
+  if (m.type == "gmsh")
+  {
+    out << YAML::Key << "file" << YAML::Value;
+    text(out, m.file);
+    out << YAML::EndMap;
+    return;
+  }
+  out << YAML::Key << "element" << YAML::Value << m.element;
+  vector(out, "elements", m.elements, dim);
+  vector(out, "origin", m.origin, dim);
+  if (m.type == "block")
+    vector(out, "size", m.size, dim);
+  else
+  {
+    vector(out, "brick_size", m.brick_size, dim);
+    vector(out, "count", m.count, dim);
+    out << YAML::Key << "stagger" << YAML::Value;
+    real(out, m.stagger);
+  }
+  out << YAML::EndMap;
+}
+
+void writeSets(YAML::Emitter &out, const char *key, const std::vector<SetSpec> &sets, int dim)
+{
+  beginList(out, key, sets.empty());
+  for (const auto &s : sets)
+  {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value;
+    text(out, s.name);
+    if (s.has_box)
+    {
+      out << YAML::Key << "box" << YAML::Value << YAML::BeginMap;
+      vector(out, "min", s.box_min, dim);
+      vector(out, "max", s.box_max, dim);
+      out << YAML::EndMap;
+    }
+    else
+    {
+      out << YAML::Key << "part" << YAML::Value;
+      text(out, s.part);
+    }
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+}
+
+void writeMaterial(YAML::Emitter &out, const MaterialSpec &m)
+{
+  out << YAML::BeginMap << YAML::Key << "name" << YAML::Value;
+  text(out, m.name);
+  out << YAML::Key << "model" << YAML::Value;
+  text(out, m.model);
+  out << YAML::Key << "eos" << YAML::Value << YAML::BeginMap << YAML::Key << "type"
+      << YAML::Value;
+  text(out, m.eos);
+  for (const auto &kv : m.values)
+    if (kv.first.rfind("eos.", 0) == 0)
+      real(out << YAML::Key << kv.first.substr(4) << YAML::Value, kv.second);
+  out << YAML::EndMap;
+  for (const auto &kv : m.values)
+    if (kv.first.rfind("eos.", 0) != 0)
+      real(out << YAML::Key << kv.first << YAML::Value, kv.second);
+  out << YAML::EndMap;
+}
+
+void writeCondition(YAML::Emitter &out, const BoundaryConditionSpec &bc, int dim)
+{
+  out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << bc.type;
+  out << YAML::Key << (bc.type == "pressure" ? "face_set" : "node_set") << YAML::Value;
+  text(out, bc.set);
+  if (bc.type == "velocity")
+    out << YAML::Key << "component" << YAML::Value << std::string(1, "xyz"[bc.component]);
+  if (bc.type == "force")
+    vector(out, "value", bc.vector, dim);
+  else
+    real(out << YAML::Key << "value" << YAML::Value, bc.value);
+  if (!bc.function.empty())
+    text(out << YAML::Key << "function" << YAML::Value, bc.function);
+  out << YAML::EndMap;
+}
+
+void writeGauge(YAML::Emitter &out, const GaugeSpec &g, int dim)
+{
+  out << YAML::BeginMap << YAML::Key << "name" << YAML::Value;
+  text(out, g.name);
+  if (g.has_point)
+  {
+    vector(out, "point", g.point, dim);
+    out << YAML::Key << "kind" << YAML::Value << g.kind;
+  }
+  else
+    out << YAML::Key << g.kind << YAML::Value << g.id;
+  out << YAML::Key << "quantities" << YAML::Value << YAML::Flow << g.quantities;
+  out << YAML::EndMap;
+}
+
+} // namespace
+
+void writeResolvedDeck(const Deck &deck, const std::string &file)
+{
+  const int dim = deck.dimension;
+  YAML::Emitter out;
+  out << YAML::Comment("resolved deck of " + deck.path + ": every default filled in");
+  out << YAML::BeginMap;
+  text(out << YAML::Key << "title" << YAML::Value, deck.title);
+  out << YAML::Key << "dimension" << YAML::Value << dim;
+  if (dim == 2)
+    out << YAML::Key << "geometry" << YAML::Value
+        << (deck.geometry == Geometry2D::Axisymmetric ? "axisymmetric" : "plane_strain");
+
+  out << YAML::Key << "time" << YAML::Value << YAML::BeginMap;
+  real(out << YAML::Key << "end" << YAML::Value, deck.end_time);
+  real(out << YAML::Key << "courant" << YAML::Value, deck.courant);
+  real(out << YAML::Key << "dt_max" << YAML::Value, deck.dt_max);
+  if (deck.max_cycles > 0) // no key: no cycle limit
+    out << YAML::Key << "max_cycles" << YAML::Value << deck.max_cycles;
+  out << YAML::EndMap;
+
+  out << YAML::Key << "numerics" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "hourglass" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "type" << YAML::Value << deck.hourglass_type;
+  real(out << YAML::Key << "coefficient" << YAML::Value, deck.hourglass_coefficient);
+  out << YAML::EndMap << YAML::Key << "bulk_viscosity" << YAML::Value << YAML::BeginMap;
+  real(out << YAML::Key << "linear" << YAML::Value, deck.bulk_viscosity_linear);
+  real(out << YAML::Key << "quadratic" << YAML::Value, deck.bulk_viscosity_quadratic);
+  out << YAML::EndMap << YAML::Key << "scatter" << YAML::Value << deck.scatter << YAML::EndMap;
+
+  vector(out, "gravity", deck.gravity, dim);
+  out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;
+  text(out << YAML::Key << "directory" << YAML::Value, deck.output_dir);
+  real(out << YAML::Key << "field_interval" << YAML::Value, deck.field_interval);
+  real(out << YAML::Key << "history_interval" << YAML::Value, deck.history_interval);
+  real(out << YAML::Key << "progress_interval" << YAML::Value, deck.progress_interval);
+  out << YAML::EndMap;
+
+  beginList(out, "functions", deck.functions.empty());
+  for (const auto &f : deck.functions)
+  {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value;
+    text(out, f.name);
+    out << YAML::Key << "points" << YAML::Value << YAML::BeginSeq;
+    for (std::size_t i = 0; i < f.t.size(); ++i)
+    {
+      out << YAML::Flow << YAML::BeginSeq;
+      real(real(out, f.t[i]), f.value[i]) << YAML::EndSeq;
+    }
+    out << YAML::EndSeq << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  beginList(out, "materials", deck.materials.empty());
+  for (const auto &m : deck.materials)
+    writeMaterial(out, m);
+  out << YAML::EndSeq;
+  beginList(out, "parts", deck.parts.empty());
+  for (const auto &p : deck.parts)
+  {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value;
+    text(out, p.name);
+    text(out << YAML::Key << "material" << YAML::Value, p.material);
+    writeMesh(out, p.mesh, dim);
+    vector(out, "initial_velocity", p.initial_velocity, dim);
+    out << YAML::Key << "merge_nodes" << YAML::Value << p.merge_nodes << YAML::EndMap;
+  }
+  out << YAML::EndSeq;
+  writeSets(out, "node_sets", deck.node_sets, dim);
+  writeSets(out, "face_sets", deck.face_sets, dim);
+  beginList(out, "boundary_conditions", deck.boundary_conditions.empty());
+  for (const auto &bc : deck.boundary_conditions)
+    writeCondition(out, bc, dim);
+  out << YAML::EndSeq;
+  beginList(out, "gauges", deck.gauges.empty());
+  for (const auto &g : deck.gauges)
+    writeGauge(out, g, dim);
+  out << YAML::EndSeq << YAML::EndMap;
+  if (!out.good())
+    throw std::runtime_error("writeResolvedDeck: YAML emitter error: " + out.GetLastError());
+
+  const std::filesystem::path target(file);
+  if (target.has_parent_path())
+    std::filesystem::create_directories(target.parent_path());
+  std::ofstream os(file);
+  os << out.c_str() << "\n";
+  if (!os)
+    throw std::runtime_error("writeResolvedDeck: cannot write " + file);
+}
+
+} // namespace scpdyn

@@ -1,0 +1,105 @@
+#pragma once
+/// \file FieldWriter.hpp
+/// \brief Field output (step 13): one HDF5 file with every frame plus an XDMF sidecar that
+/// ParaView (XDMF and XDMF3 readers) and meshio open as a time series.
+///
+/// Layout of `fields.h5`:
+///   /mesh/coords0 (n,3) f64, /mesh/cell_types (ne) i32, /mesh/connectivity (flat) i32,
+///   /mesh/topology   the XDMF topology array (ne, npe) for one cell type, else the flat
+///                    Mixed array with XDMF type codes (written once, referenced by each frame)
+///   /frames/<k>      attributes `time` (s) and `cycle`; datasets `coords` (n,3) and
+///                    `point_data/<name>`, `cell_data/<name>`; tensors are stored in XDMF
+///                    Tensor6 order xx xy xz yy yz zz (converted from Voigt).
+/// Every frame carries a nodal "displacement" (x - x0 unless the frame supplies one), so a
+/// reader that takes the mesh from the first frame only (meshio) can still warp it.
+/// Host-only: the solver copies Views to host and hands plain vectors over.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace scpdyn
+{
+
+/// \brief Mesh description fixed for the whole run.
+struct FieldMeshDesc
+{
+  int dim = 3;                   ///< 1, 2, 3 (geometry is written with 3 components anyway)
+  std::vector<double> coords0;   ///< n_nodes*3, initial coordinates (m)
+  std::vector<int> cell_types;   ///< per element: ElementType as int (0 Line2 .. 3 Tet4)
+  std::vector<int> connectivity; ///< flattened, nodesPerElement(type) ids per element
+};
+
+/// \brief Named field; the vector length is fixed by its kind (see FieldFrame).
+using NamedField = std::pair<std::string, std::vector<double>>;
+
+/// \brief One output time. Names must be non-empty, without '/', unique per centring.
+struct FieldFrame
+{
+  double time = 0.0; ///< s
+  long cycle = 0;
+  std::vector<double> coords;            ///< current (deformed) n_nodes*3 (m)
+  std::vector<NamedField> node_vectors;  ///< n_nodes*3 each ("displacement", "velocity")
+  std::vector<NamedField> node_scalars;  ///< n_nodes each
+  std::vector<NamedField> cell_scalars;  ///< n_cells each ("pressure", "part")
+  std::vector<NamedField> cell_tensors6; ///< n_cells*6, Voigt xx yy zz xy yz zx ("stress")
+};
+
+/// \brief Appends frames to `dir/fields.h5` and keeps `dir/fields.xmf` valid after each one.
+///
+/// The file is opened through one function taking a file-access property list (serial
+/// sec2 driver today) and every dataset goes through one writer taking a transfer list, so
+/// a collective MPI-IO version only changes those two lists.
+class FieldWriter
+{
+public:
+  /// \brief Creates `dir` (mkdir -p), truncates `dir/fields.h5`, writes /mesh and an empty
+  /// `dir/fields.xmf`. Throws std::runtime_error naming the path on I/O failure and
+  /// std::invalid_argument on an inconsistent mesh.
+  FieldWriter(const std::string &dir, const FieldMeshDesc &mesh);
+  ~FieldWriter();
+  FieldWriter(const FieldWriter &) = delete;
+  FieldWriter &operator=(const FieldWriter &) = delete;
+
+  /// \brief Appends frame k = framesWritten() as /frames/<k>, flushes the HDF5 file and
+  /// rewrites fields.xmf completely (via a temporary file and rename, so a crash leaves
+  /// the previous complete sidecar). Throws std::invalid_argument on wrong field sizes.
+  void write(const FieldFrame &frame);
+  /// \brief Flushes and closes the HDF5 file; idempotent. write() afterwards throws.
+  void close();
+
+  int framesWritten() const { return int(_frames.size()); }
+  const std::string &h5Path() const { return _h5_path; }
+  const std::string &xmfPath() const { return _xmf_path; }
+
+private:
+  /// XDMF description of one attribute of a written frame (kept to regenerate the XML).
+  struct AttributeInfo
+  {
+    std::string name;
+    bool on_cells = false;
+    int components = 1; ///< 1 scalar, 3 vector, 6 tensor6
+  };
+  struct FrameInfo
+  {
+    double time;
+    long cycle;
+    std::vector<AttributeInfo> attributes;
+  };
+
+  void writeMesh();
+  void writeXdmf() const;
+  std::string topologyXml() const;
+
+  std::string _h5_path, _xmf_path;
+  FieldMeshDesc _mesh;
+  int _num_nodes = 0, _num_cells = 0;
+  int _uniform_type = -1; ///< the single cell type, or -1 when the mesh mixes types
+  std::size_t _topology_length = 0;
+  std::int64_t _file = -1; ///< hid_t of the open file (int64 in HDF5 1.10), -1 when closed
+  std::int64_t _dxpl = -1; ///< dataset transfer list (independent now; collective later)
+  std::vector<FrameInfo> _frames;
+};
+
+} // namespace scpdyn

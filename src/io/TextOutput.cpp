@@ -1,0 +1,275 @@
+/// \file TextOutput.cpp
+/// \brief CSV, JSON and directory helpers declared in TextOutput.hpp.
+#include "io/TextOutput.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
+
+namespace scpdyn
+{
+
+void ensureDirectory(const std::string &path)
+{
+  namespace fs = std::filesystem;
+  if (path.empty())
+    throw std::runtime_error("ensureDirectory: empty path");
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  // create_directories reports no error for an existing regular file on some libstdc++
+  // versions, hence the explicit check afterwards.
+  if (ec || !fs::is_directory(path))
+    throw std::runtime_error("cannot create directory '" + path +
+                             "': " + (ec ? ec.message() : std::string("not a directory")));
+}
+
+std::string formatDouble(double value)
+{
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", value);
+  return buf;
+}
+
+// ---------------------------------------------------------------------------------------
+// CSV
+
+namespace
+{
+std::string csvField(const std::string &s)
+{
+  if (s.find_first_of(",\"\r\n") == std::string::npos)
+    return s;
+  std::string out = "\"";
+  for (char c : s)
+    out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+} // namespace
+
+CsvWriter::CsvWriter(const std::string &path, std::vector<std::string> columns, int flush_every)
+    : _path(path), _columns(std::move(columns)), _flush_every(flush_every < 1 ? 1 : flush_every)
+{
+  if (_columns.empty())
+    throw std::invalid_argument("CsvWriter: no columns for '" + path + "'");
+  _file = std::fopen(path.c_str(), "w");
+  if (!_file)
+    throw std::runtime_error("CsvWriter: cannot open '" + path + "': " + std::strerror(errno));
+  std::string header;
+  for (std::size_t i = 0; i < _columns.size(); ++i)
+    header += (i ? "," : "") + csvField(_columns[i]);
+  header += "\n";
+  std::fputs(header.c_str(), _file);
+  flush(); // the header alone already tells a crashed run's reader what was measured
+}
+
+CsvWriter::~CsvWriter()
+{
+  try
+  {
+    close();
+  }
+  catch (...)
+  {
+    // A destructor must not throw; call close() explicitly to see the error.
+  }
+}
+
+void CsvWriter::row(const std::vector<double> &values)
+{
+  if (!_file)
+    throw std::logic_error("CsvWriter: row() after close() on '" + _path + "'");
+  if (values.size() != _columns.size())
+    throw std::invalid_argument("CsvWriter: row of " + std::to_string(values.size()) +
+                                " values for " + std::to_string(_columns.size()) + " columns in '" +
+                                _path + "'");
+  std::string line;
+  line.reserve(values.size() * 25);
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    if (i)
+      line += ',';
+    line += formatDouble(values[i]);
+  }
+  line += '\n';
+  std::fputs(line.c_str(), _file);
+  if (++_pending >= _flush_every)
+    flush();
+}
+
+void CsvWriter::flush()
+{
+  if (!_file)
+    return;
+  _pending = 0;
+  if (std::fflush(_file) != 0 || std::ferror(_file))
+    throw std::runtime_error("CsvWriter: write error on '" + _path + "'");
+}
+
+void CsvWriter::close()
+{
+  if (!_file)
+    return;
+  const bool bad = std::fflush(_file) != 0 || std::ferror(_file);
+  const bool close_failed = std::fclose(_file) != 0;
+  _file = nullptr;
+  if (bad || close_failed)
+    throw std::runtime_error("CsvWriter: write error on '" + _path + "'");
+}
+
+// ---------------------------------------------------------------------------------------
+// JSON
+
+std::string jsonEscape(const std::string &s)
+{
+  std::string out;
+  out.reserve(s.size());
+  for (const char ch : s)
+  {
+    const auto c = static_cast<unsigned char>(ch);
+    switch (c)
+    {
+    case '"': out += "\\\""; break;
+    case '\\': out += "\\\\"; break;
+    case '\b': out += "\\b"; break;
+    case '\f': out += "\\f"; break;
+    case '\n': out += "\\n"; break;
+    case '\r': out += "\\r"; break;
+    case '\t': out += "\\t"; break;
+    default:
+      if (c < 0x20)
+      {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(c));
+        out += buf;
+      }
+      else
+        out += ch;
+    }
+  }
+  return out;
+}
+
+namespace
+{
+std::string jsonNumber(double v)
+{
+  return std::isfinite(v) ? formatDouble(v) : "null";
+}
+} // namespace
+
+JsonObject &JsonObject::set(const std::string &key, std::string text,
+                            std::shared_ptr<JsonObject> obj)
+{
+  for (Entry &e : _entries)
+    if (e.key == key)
+    {
+      e.text = std::move(text);
+      e.object = std::move(obj);
+      return *this;
+    }
+  _entries.push_back({key, std::move(text), std::move(obj)});
+  return *this;
+}
+
+JsonObject &JsonObject::add(const std::string &key, double value)
+{
+  return set(key, jsonNumber(value), nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, int value)
+{
+  return set(key, std::to_string(value), nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, long value)
+{
+  return set(key, std::to_string(value), nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, long long value)
+{
+  return set(key, std::to_string(value), nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, unsigned value)
+{
+  return set(key, std::to_string(value), nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, unsigned long value)
+{
+  return set(key, std::to_string(value), nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, bool value)
+{
+  return set(key, value ? "true" : "false", nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, const std::string &value)
+{
+  return set(key, "\"" + jsonEscape(value) + "\"", nullptr);
+}
+JsonObject &JsonObject::add(const std::string &key, const char *value)
+{
+  return add(key, std::string(value ? value : ""));
+}
+JsonObject &JsonObject::add(const std::string &key, const JsonObject &value)
+{
+  return set(key, std::string(), std::make_shared<JsonObject>(value));
+}
+JsonObject &JsonObject::add(const std::string &key, const std::vector<double> &values)
+{
+  std::string text = "[";
+  for (std::size_t i = 0; i < values.size(); ++i)
+    text += (i ? ", " : "") + jsonNumber(values[i]);
+  return set(key, text + "]", nullptr);
+}
+
+void JsonObject::dumpTo(std::string &out, int indent, int level) const
+{
+  if (_entries.empty())
+  {
+    out += "{}";
+    return;
+  }
+  const bool pretty = indent > 0;
+  const std::string pad = pretty ? std::string(std::size_t(indent * (level + 1)), ' ') : "";
+  out += pretty ? "{\n" : "{";
+  for (std::size_t i = 0; i < _entries.size(); ++i)
+  {
+    const Entry &e = _entries[i];
+    out += pad + "\"" + jsonEscape(e.key) + (pretty ? "\": " : "\":");
+    if (e.object)
+      e.object->dumpTo(out, indent, level + 1);
+    else
+      out += e.text;
+    if (i + 1 < _entries.size())
+      out += ",";
+    if (pretty)
+      out += "\n";
+  }
+  if (pretty)
+    out += std::string(std::size_t(indent * level), ' ');
+  out += "}";
+}
+
+std::string JsonObject::dump(int indent) const
+{
+  std::string out;
+  dumpTo(out, indent, 0);
+  return out;
+}
+
+void writeJson(const std::string &path, const JsonObject &object, int indent)
+{
+  const std::string tmp = path + ".tmp";
+  std::FILE *fp = std::fopen(tmp.c_str(), "w");
+  if (!fp)
+    throw std::runtime_error("writeJson: cannot open '" + tmp + "': " + std::strerror(errno));
+  const std::string text = object.dump(indent) + "\n";
+  const bool ok = std::fwrite(text.data(), 1, text.size(), fp) == text.size();
+  if (std::fclose(fp) != 0 || !ok)
+    throw std::runtime_error("writeJson: cannot write '" + tmp + "'");
+  if (std::rename(tmp.c_str(), path.c_str()) != 0)
+    throw std::runtime_error("writeJson: cannot rename '" + tmp + "' to '" + path +
+                             "': " + std::strerror(errno));
+}
+
+} // namespace scpdyn

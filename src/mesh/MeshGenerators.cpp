@@ -1,0 +1,178 @@
+#include "mesh/MeshGenerators.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace scpdyn
+{
+namespace
+{
+const char *typeName(ElementType t)
+{
+  switch (t)
+  {
+  case ElementType::Line2: return "line2";
+  case ElementType::Quad4: return "quad4";
+  case ElementType::Hex8: return "hex8";
+  case ElementType::Tet4: return "tet4";
+  }
+  return "?";
+}
+
+void setDimension(HostMesh &mesh, ElementType type, const std::string &name)
+{
+  const int dim = dimensionOf(type);
+  if (mesh.dim != 0 && mesh.dim != dim)
+    throw std::runtime_error("mesh part '" + name + "': " + typeName(type) + " is " +
+                             std::to_string(dim) + "D but the mesh already holds " +
+                             std::to_string(mesh.dim) + "D parts");
+  mesh.dim = dim;
+}
+
+// The last node lands exactly on origin + size, so neighbouring blocks meet without round-off
+// at least on that side.
+Real gridCoord(Real origin, Real size, int i, int cells)
+{
+  return i == cells ? origin + size : origin + size * (Real(i) / Real(cells));
+}
+
+// The six Kuhn tets of the unit cube: path (0,0,0) -> +e_p0 -> +e_p1 -> (1,1,1) for each
+// permutation p; odd permutations have their middle nodes swapped for a positive volume.
+struct KuhnTet
+{
+  int axis[3];
+  bool odd;
+};
+const KuhnTet kKuhn[6] = {{{0, 1, 2}, false}, {{1, 2, 0}, false}, {{2, 0, 1}, false},
+                          {{0, 2, 1}, true},  {{2, 1, 0}, true},  {{1, 0, 2}, true}};
+} // namespace
+
+void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
+                 std::array<int, 3> cells, std::array<Real, 3> origin, std::array<Real, 3> size)
+{
+  const int dim = dimensionOf(type);
+  for (int d = 0; d < dim; ++d)
+    if (cells[d] < 1 || !(size[d] > 0))
+      throw std::runtime_error("mesh part '" + name + "': cells (" + std::to_string(cells[d]) +
+                               ") and size (" + std::to_string(size[d]) + " m) along axis " +
+                               std::to_string(d) + " must be positive");
+  setDimension(mesh, type, name);
+
+  std::array<int, 3> n{{1, 1, 1}}; // nodes per axis
+  for (int d = 0; d < dim; ++d)
+    n[d] = cells[d] + 1;
+  const Index base = mesh.numNodes();
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+      {
+        std::array<Real, 3> x{{0, 0, 0}};
+        const int ijk[3] = {i, j, k};
+        for (int d = 0; d < dim; ++d)
+          x[d] = gridCoord(origin[d], size[d], ijk[d], cells[d]);
+        mesh.coords.push_back(x);
+      }
+  auto node = [&](int i, int j, int k) { return base + i + n[0] * (j + n[1] * k); };
+
+  HostPart part;
+  part.name = name;
+  part.type = type;
+  auto &conn = part.connectivity;
+  const int cz = dim == 3 ? cells[2] : 1, cy = dim >= 2 ? cells[1] : 1;
+  for (int k = 0; k < cz; ++k)
+    for (int j = 0; j < cy; ++j)
+      for (int i = 0; i < cells[0]; ++i)
+      {
+        switch (type)
+        {
+        case ElementType::Line2:
+          conn.insert(conn.end(), {node(i, 0, 0), node(i + 1, 0, 0)});
+          break;
+        case ElementType::Quad4:
+          conn.insert(conn.end(), {node(i, j, 0), node(i + 1, j, 0), node(i + 1, j + 1, 0),
+                                   node(i, j + 1, 0)});
+          break;
+        case ElementType::Hex8:
+          conn.insert(conn.end(), {node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k),
+                                   node(i, j + 1, k), node(i, j, k + 1), node(i + 1, j, k + 1),
+                                   node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)});
+          break;
+        case ElementType::Tet4:
+          for (const KuhnTet &t : kKuhn)
+          {
+            int c[3] = {0, 0, 0};
+            Index v[4];
+            v[0] = node(i, j, k);
+            for (int s = 0; s < 2; ++s)
+            {
+              c[t.axis[s]] = 1;
+              v[1 + s] = node(i + c[0], j + c[1], k + c[2]);
+            }
+            v[3] = node(i + 1, j + 1, k + 1);
+            if (t.odd)
+              std::swap(v[1], v[2]);
+            conn.insert(conn.end(), v, v + 4);
+          }
+          break;
+        }
+      }
+  mesh.parts.push_back(std::move(part));
+}
+
+void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type,
+                     std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
+                     std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger)
+{
+  if (type == ElementType::Line2)
+    throw std::runtime_error("brick wall '" + prefix + "': needs quad4, hex8 or tet4 elements");
+  if (!(stagger >= 0 && stagger < 1))
+    throw std::runtime_error("brick wall '" + prefix + "': stagger must lie in [0, 1), got " +
+                             std::to_string(stagger));
+  const bool is3d = dimensionOf(type) == 3;
+  const int courses = is3d ? count[2] : count[1];
+  const int rows = is3d ? count[1] : 1; // bricks along y within a 3D course
+  if (count[0] < 1 || courses < 1 || rows < 1)
+    throw std::runtime_error("brick wall '" + prefix + "': brick counts must be positive");
+  const Real L = brick_size[0];
+  const int course_axis = is3d ? 2 : 1;
+
+  for (int c = 0; c < courses; ++c)
+  {
+    // Segments of the course along x as (start offset, length fraction) in brick lengths.
+    std::vector<std::pair<Real, Real>> seg;
+    const bool shifted = (c % 2 == 1) && stagger > 0;
+    if (shifted)
+    {
+      seg.push_back({0, stagger});
+      for (int i = 0; i + 1 < count[0]; ++i)
+        seg.push_back({stagger + i, 1});
+      seg.push_back({stagger + count[0] - 1, 1 - stagger});
+    }
+    else
+      for (int i = 0; i < count[0]; ++i)
+        seg.push_back({Real(i), 1});
+
+    for (int j = 0; j < rows; ++j)
+      for (size_t i = 0; i < seg.size(); ++i)
+      {
+        std::array<int, 3> cells = cells_per_brick;
+        std::array<Real, 3> o = origin, size = brick_size;
+        if (seg[i].second < 1)
+        {
+          cells[0] = std::max(1, int(std::lround(cells_per_brick[0] * seg[i].second)));
+          size[0] = L * seg[i].second;
+        }
+        o[0] = origin[0] + L * seg[i].first;
+        if (is3d)
+          o[1] = origin[1] + brick_size[1] * j;
+        o[course_axis] = origin[course_axis] + brick_size[course_axis] * c;
+        const std::string name = prefix + "." + std::to_string(c) + "." +
+                                 std::to_string(j * int(seg.size()) + int(i));
+        appendBlock(mesh, name, type, cells, o, size);
+      }
+  }
+}
+
+} // namespace scpdyn

@@ -1,0 +1,40 @@
+#pragma once
+/// \file MeshGenerators.hpp
+/// \brief Structured meshes built on the host: one block, or a wall of bricks (one part per
+/// brick). Every call appends parts with their own new nodes; parts never share nodes.
+///
+/// Node ordering of the elements (the element code relies on it):
+///   Line2: left, right.
+///   Quad4: counter-clockwise, 0 (-,-), 1 (+,-), 2 (+,+), 3 (-,+).
+///   Hex8:  bottom face 0-1-2-3 counter-clockwise seen from +z, top face 4-5-6-7 above them.
+///   Tet4:  positive volume, ((x1-x0) x (x2-x0)) . (x3-x0) > 0.
+#include "mesh/HostMesh.hpp"
+
+#include <array>
+#include <string>
+
+namespace scpdyn
+{
+
+/// \brief Append one part `name`: a box of `cells` elements starting at `origin` (m) with edge
+/// lengths `size` (m). Line2 uses cells[0] along x (y = z = 0); Quad4 cells[0] x cells[1] in
+/// the x-y plane (z = 0); Hex8 a box; Tet4 a box of hexes each split into 6 tets by the
+/// Kuhn (Freudenthal) split about the (-,-,-)-(+,+,+) diagonal, which is the same in every
+/// cell and hence conforming. Sets mesh.dim; throws std::runtime_error if it disagrees with
+/// the dimension of parts already in the mesh, or for non-positive cells or sizes.
+void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
+                 std::array<int, 3> cells, std::array<Real, 3> origin, std::array<Real, 3> size);
+
+/// \brief Append a rectangular wall of bricks, each its own part named
+/// `<prefix>.<course>.<index>`. 2D (Quad4): count[0] bricks per course along x, count[1]
+/// courses along y. 3D (Hex8, Tet4): count[0] along x, count[1] along y, count[2] courses
+/// along z; index = j * (bricks along x in that course) + i. Every odd course is shifted along
+/// x by stagger * brick length (0 <= stagger < 1) and has a partial brick at each end
+/// (lengths stagger * L and (1 - stagger) * L, which get max(1, round(cells * fraction))
+/// cells along x), so the wall stays count[0] * L long; stagger = 0 gives a stack bond.
+/// `cells_per_brick` are the cells of a full brick, `brick_size` its edge lengths (m).
+void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type,
+                     std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
+                     std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger);
+
+} // namespace scpdyn

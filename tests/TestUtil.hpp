@@ -1,0 +1,71 @@
+#pragma once
+// Helpers shared by the tests: run decks in-process or through the binary, read CSV files.
+#include "driver/Solver.hpp"
+#include "input/Deck.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace scpdyn::test
+{
+
+/// \brief Columns of a CSV file written by scpdyn (header line, then numbers).
+inline std::map<std::string, std::vector<double>> readCsv(const std::string &path)
+{
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> names;
+  std::map<std::string, std::vector<double>> cols;
+  if (!std::getline(in, line))
+    return cols;
+  std::stringstream hs(line);
+  for (std::string n; std::getline(hs, n, ',');)
+    names.push_back(n);
+  while (std::getline(in, line))
+  {
+    std::stringstream ls(line);
+    size_t k = 0;
+    for (std::string v; std::getline(ls, v, ',') && k < names.size(); ++k)
+      cols[names[k]].push_back(std::strtod(v.c_str(), nullptr));
+  }
+  return cols;
+}
+
+/// \brief Runs the scpdyn binary; returns its exit status, stderr text in `err`.
+inline int runBinary(const std::string &args, std::string *err = nullptr,
+                     const std::string &env = "")
+{
+  const std::string err_file = std::string(SCPDYN_TEST_WORKDIR) + "/stderr_" +
+                               std::to_string(std::hash<std::string>()(args + env)) + ".txt";
+  const std::string cmd = env + " " + SCPDYN_BINARY + " " + args + " > /dev/null 2> " + err_file;
+  const int rc = std::system(cmd.c_str());
+  if (err)
+  {
+    std::ifstream in(err_file);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    *err = ss.str();
+  }
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+/// \brief Writes text to a file in the test work directory; returns its path.
+inline std::string writeWorkFile(const std::string &name, const std::string &text)
+{
+  const std::string path = std::string(SCPDYN_TEST_WORKDIR) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// \brief Deck parsed from YAML text (the path names it in messages).
+inline Deck deckFromText(const std::string &yaml, const std::string &name)
+{
+  return parseDeckString(yaml, name + ".yaml");
+}
+
+} // namespace scpdyn::test
