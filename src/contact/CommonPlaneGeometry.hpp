@@ -4,16 +4,15 @@
 /// normal and area (4.1), CP normal and point (4.2), local basis and projection (4.3), overlap
 /// polygon, contact area and point of contact (4.4-4.6), area fractions (4.7) and the initial
 /// closure u0 (4.8), and the nodal weights of the CP force (section 8). Device-callable,
-/// fixed-size buffers, no allocation.
+/// fixed-size buffers, no allocation. The planar polygon kernels are in PolygonClip.hpp.
 ///
 /// Positions passed in are the half-step positions x^{n+1/2} (sub-step A is the caller's).
 /// Every point is a 3-vector; 2D problems leave z = 0 (axisymmetric: x = r, y = z).
-#include "contact/ContactParams.hpp"
+#include "contact/PolygonClip.hpp"
 
 namespace scpdyn
 {
 
-constexpr int kMaxPolyVerts = 16;   ///< overlap buffer; clipConvex needs n_subject + n_clip <= 16
 constexpr Real kAreaEpsilon = 1e-8; ///< epsilon_A of 3.2/3.4: active iff Ac > eps*min(A1, A2)
 
 /// \brief Centroid, outward unit normal, area and diameter of one face (section 4.1).
@@ -49,173 +48,6 @@ namespace CpGeom
 {
 using namespace ContactMath;
 
-KOKKOS_INLINE_FUNCTION Real cross2(Real ax, Real ay, Real bx, Real by) { return ax * by - ay * bx; }
-
-/// \brief Shoelace area and first moments (integral of xi, eta) of a closed polygon.
-KOKKOS_INLINE_FUNCTION void polygonMoments(const Real p[][2], int np, Real &A, Real &Mx, Real &My)
-{
-  A = Mx = My = 0;
-  for (int k = 0; k < np; ++k)
-  {
-    const int l = (k + 1) % np;
-    const Real w = cross2(p[k][0], p[k][1], p[l][0], p[l][1]);
-    A += w;
-    Mx += (p[k][0] + p[l][0]) * w;
-    My += (p[k][1] + p[l][1]) * w;
-  }
-  A *= 0.5;
-  Mx /= 6.0;
-  My /= 6.0;
-}
-
-KOKKOS_INLINE_FUNCTION Real polygonSignedArea(const Real p[][2], int np)
-{
-  Real A, Mx, My;
-  polygonMoments(p, np, A, Mx, My);
-  return A;
-}
-
-KOKKOS_INLINE_FUNCTION void reversePolygon(Real p[][2], int np)
-{
-  for (int i = 0, j = np - 1; i < j; ++i, --j)
-    for (int d = 0; d < 2; ++d)
-    {
-      const Real t = p[i][d];
-      p[i][d] = p[j][d];
-      p[j][d] = t;
-    }
-}
-
-/// \brief Convexity of a counter-clockwise polygon: no turn to the right beyond round-off
-/// (tolerance relative to the squared edge lengths, so collinear vertices count as convex).
-KOKKOS_INLINE_FUNCTION bool isConvexCCW(const Real p[][2], int np)
-{
-  Real scale = 0;
-  for (int k = 0; k < np; ++k)
-  {
-    const int l = (k + 1) % np;
-    scale += (p[l][0] - p[k][0]) * (p[l][0] - p[k][0]) + (p[l][1] - p[k][1]) * (p[l][1] - p[k][1]);
-  }
-  const Real tol = 1e-12 * scale;
-  for (int k = 0; k < np; ++k)
-  {
-    const int l = (k + 1) % np, m = (k + 2) % np;
-    const Real t =
-        cross2(p[l][0] - p[k][0], p[l][1] - p[k][1], p[m][0] - p[l][0], p[m][1] - p[l][1]);
-    if (t < -tol)
-      return false;
-  }
-  return true;
-}
-
-/// \brief Sutherland-Hodgman: clip `subj` by the convex CCW polygon `clip` (section 4.4 step 3).
-/// Keeps the part left of every clip edge. Returns the vertex count of `out` (0 if empty).
-/// Capacity: ns + nc <= kMaxPolyVerts (each convex half-plane cut adds at most one vertex).
-KOKKOS_INLINE_FUNCTION int clipConvex(const Real subj[][2], int ns, const Real clip[][2], int nc,
-                                      Real out[][2])
-{
-  Real buf[kMaxPolyVerts][2];
-  int n = ns;
-  for (int k = 0; k < ns; ++k)
-    out[k][0] = subj[k][0], out[k][1] = subj[k][1];
-  for (int e = 0; e < nc && n > 0; ++e)
-  {
-    const Real ax = clip[e][0], ay = clip[e][1];
-    const Real ex = clip[(e + 1) % nc][0] - ax, ey = clip[(e + 1) % nc][1] - ay;
-    for (int k = 0; k < n; ++k)
-      buf[k][0] = out[k][0], buf[k][1] = out[k][1];
-    const int nin = n;
-    n = 0;
-    for (int k = 0; k < nin; ++k)
-    {
-      const int j = (k + nin - 1) % nin; // S = previous vertex, E = current vertex
-      const Real dS = cross2(ex, ey, buf[j][0] - ax, buf[j][1] - ay);
-      const Real dE = cross2(ex, ey, buf[k][0] - ax, buf[k][1] - ay);
-      // dS - dE cannot vanish below: exactly one of the two is negative
-      if ((dE >= 0) != (dS >= 0) && n < kMaxPolyVerts)
-      {
-        const Real t = dS / (dS - dE);
-        out[n][0] = buf[j][0] + t * (buf[k][0] - buf[j][0]);
-        out[n][1] = buf[j][1] + t * (buf[k][1] - buf[j][1]);
-        ++n;
-      }
-      if (dE >= 0 && n < kMaxPolyVerts)
-      {
-        out[n][0] = buf[k][0], out[n][1] = buf[k][1];
-        ++n;
-      }
-    }
-  }
-  return n < 3 ? 0 : n;
-}
-
-/// \brief A polygon as a signed sum of convex pieces: itself if convex, else its fan triangles
-/// about the vertex centroid, each oriented CCW and carrying the sign of its shoelace area
-/// (section 4.4 step 4). Exact for any simple polygon: the fan's winding numbers add up to the
-/// polygon's.
-struct ConvexPieces
-{
-  Real p[4][4][2]; ///< up to 4 pieces of up to 4 vertices (face polygons have <= 4 vertices)
-  int nv[4];
-  Real sign[4];
-  int count;
-};
-
-KOKKOS_INLINE_FUNCTION void splitConvex(const Real poly[][2], int np, ConvexPieces &cp)
-{
-  if (isConvexCCW(poly, np))
-  {
-    cp.count = 1;
-    cp.nv[0] = np;
-    cp.sign[0] = 1;
-    for (int k = 0; k < np; ++k)
-      cp.p[0][k][0] = poly[k][0], cp.p[0][k][1] = poly[k][1];
-    return;
-  }
-  Real cx = 0, cy = 0;
-  for (int k = 0; k < np; ++k)
-    cx += poly[k][0] / np, cy += poly[k][1] / np;
-  cp.count = 0;
-  for (int k = 0; k < np; ++k)
-  {
-    const int l = (k + 1) % np, m = cp.count;
-    cp.p[m][0][0] = poly[k][0], cp.p[m][0][1] = poly[k][1];
-    cp.p[m][1][0] = poly[l][0], cp.p[m][1][1] = poly[l][1];
-    cp.p[m][2][0] = cx, cp.p[m][2][1] = cy;
-    cp.nv[m] = 3;
-    const Real a = polygonSignedArea(cp.p[m], 3);
-    if (a == 0)
-      continue; // a spoke-aligned sliver contributes nothing
-    cp.sign[m] = a > 0 ? 1 : -1;
-    if (a < 0)
-      reversePolygon(cp.p[m], 3);
-    ++cp.count;
-  }
-}
-
-/// \brief Area and first moments of the intersection of two CCW simple polygons (<= 4 vertices
-/// each) in the CP coordinates: Sutherland-Hodgman when both are convex, signed fans otherwise.
-KOKKOS_INLINE_FUNCTION void overlapMoments(const Real P[][2], int np, const Real Q[][2], int nq,
-                                           Real &A, Real &Mx, Real &My)
-{
-  ConvexPieces a, b;
-  splitConvex(P, np, a);
-  splitConvex(Q, nq, b);
-  A = Mx = My = 0;
-  Real out[kMaxPolyVerts][2];
-  for (int i = 0; i < a.count; ++i)
-    for (int j = 0; j < b.count; ++j)
-    {
-      const int no = clipConvex(a.p[i], a.nv[i], b.p[j], b.nv[j], out);
-      if (no == 0)
-        continue;
-      Real ai, mx, my;
-      polygonMoments(out, no, ai, mx, my);
-      const Real s = a.sign[i] * b.sign[j];
-      A += s * ai, Mx += s * mx, My += s * my;
-    }
-}
-
 /// \brief In-plane basis of 4.3: e1 = normalise(k x n) with k the axis of smallest |n_k|,
 /// e2 = n x e1, so (e1, e2, n) is right-handed.
 KOKKOS_INLINE_FUNCTION void cpBasis(const Real n[3], Real e1[3], Real e2[3])
@@ -243,7 +75,7 @@ KOKKOS_INLINE_FUNCTION Real faceDiameter(const Real x[][3], int nn)
       const Real d[3] = {x[j][0] - x[i][0], x[j][1] - x[i][1], x[j][2] - x[i][2]};
       h2 = max(h2, dot(d, d));
     }
-  return sqrt(h2);
+  return kmath::sqrt(h2);
 }
 
 /// \brief (D7): u0 = s1 - s2, where s_k locates the plane of face k along x_poc + s*n.
@@ -286,7 +118,7 @@ KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool
   if constexpr (Dim == 2)
   {
     const Real tx = x[1][0] - x[0][0], ty = x[1][1] - x[0][1];
-    const Real len = sqrt(tx * tx + ty * ty);
+    const Real len = kmath::sqrt(tx * tx + ty * ty);
     vec[0] = ty, vec[1] = -tx;
     f.area = axisym ? 0.5 * (x[0][0] + x[1][0]) * len : len;
   }

@@ -7,17 +7,10 @@
 namespace scpdyn
 {
 
-/// \brief Scalar math usable on host and device with Kokkos 3.4 (Experimental namespace) and
-/// 4.x (Kokkos namespace, Experimental deprecated since 3.7). Local to the contact room.
+/// \brief Small vector helpers usable on host and device (square roots and trigonometry come
+/// from the project-wide `kmath` alias of core/Types.hpp).
 namespace ContactMath
 {
-#if KOKKOS_VERSION >= 30700
-KOKKOS_INLINE_FUNCTION Real sqrt(Real x) { return Kokkos::sqrt(x); }
-KOKKOS_INLINE_FUNCTION Real tan(Real x) { return Kokkos::tan(x); }
-#else
-KOKKOS_INLINE_FUNCTION Real sqrt(Real x) { return Kokkos::Experimental::sqrt(x); }
-KOKKOS_INLINE_FUNCTION Real tan(Real x) { return Kokkos::Experimental::tan(x); }
-#endif
 KOKKOS_INLINE_FUNCTION Real abs(Real x) { return x < 0 ? -x : x; }
 KOKKOS_INLINE_FUNCTION Real min(Real x, Real y) { return x < y ? x : y; }
 KOKKOS_INLINE_FUNCTION Real max(Real x, Real y) { return x > y ? x : y; }
@@ -31,7 +24,7 @@ KOKKOS_INLINE_FUNCTION void cross(const Real x[3], const Real y[3], Real r[3])
   r[1] = x[2] * y[0] - x[0] * y[2];
   r[2] = x[0] * y[1] - x[1] * y[0];
 }
-KOKKOS_INLINE_FUNCTION Real norm(const Real x[3]) { return sqrt(dot(x, x)); }
+KOKKOS_INLINE_FUNCTION Real norm(const Real x[3]) { return kmath::sqrt(dot(x, x)); }
 } // namespace ContactMath
 
 /// \brief Contact option of a CP (scp-method.md section 11).
@@ -100,7 +93,7 @@ KOKKOS_INLINE_FUNCTION JointParams resolveParams(JointParams p)
   if (p.Emax < 0)
     p.Emax = 1.0e4 * p.E0;
   if (p.sigma_t < 0)
-    p.sigma_t = p.phi0 > 0 ? p.C / ContactMath::tan(p.phi0) : 0.0;
+    p.sigma_t = p.phi0 > 0 ? p.C / kmath::tan(p.phi0) : 0.0;
   return p;
 }
 

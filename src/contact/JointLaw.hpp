@@ -4,9 +4,9 @@
 /// hyperbolic normal law with max-closure memory (6.1, 6.2), Coulomb shear with softening and
 /// dilation (6.3, 6.4), tension cut-off and re-closing (6.5), traction history (6.6), energy
 /// increments (6.7), the explicit update (7) and its time step (19), the quasi-implicit update
-/// (10), slide line, sticky and sleepy (10.5, 10.8, 11) and the shear rotation (13). The nodal
-/// weights of section 8 are geometry and live in CommonPlaneGeometry.hpp. All device-callable
-/// free functions on POD data.
+/// (10) and the shear rotation (13). Slide line, sticky and sleepy (10.5, 10.8, 11) are in
+/// JointConstraints.hpp; the nodal weights of section 8 are geometry and live in
+/// CommonPlaneGeometry.hpp. All device-callable free functions on POD data.
 ///
 /// Sign conventions (section 1): n points from face 1 to face 2; Vn = (V1 - V2).n > 0 closing;
 /// Vs = tangential part of V1 - V2; the force on face 2 is F = Fn*n + Fs, face 1 gets -F.
@@ -49,7 +49,7 @@ struct CpStepResult
 /// \brief u_cap = a(1 - sqrt(E0/Emax)), the closure where E reaches Emax (D8) [m].
 KOKKOS_INLINE_FUNCTION Real jointCapClosure(const JointParams &p)
 {
-  return p.a * (1.0 - ContactMath::sqrt(p.E0 / p.Emax));
+  return p.a * (1.0 - kmath::sqrt(p.E0 / p.Emax));
 }
 
 /// \brief Normal modulus (1) with the cut-off (D8): E0/(1 - max(u,umax)/a)^2, Emax beyond u_cap
@@ -89,7 +89,7 @@ KOKKOS_INLINE_FUNCTION Real dilationTangent(const JointParams &p, Real Fn, Real 
   if (p.sigma_cr <= 0)
     return 0;
   const Real decay = max(0.0, 1.0 - max(Fn, 0.0) / (p.sigma_cr * Ac));
-  return min(tan(p.psi0) * decay, max(tan_phi, 0.0));
+  return min(kmath::tan(p.psi0) * decay, max(tan_phi, 0.0));
 }
 
 /// \brief Line (unloading/reloading) stiffness E_law(umax)*Ac/a [N/m].
@@ -172,8 +172,8 @@ KOKKOS_INLINE_FUNCTION Real contactTimeStep(const JointParams &p, const CpState 
     return 1e300;
   const Real E_pred = jointModulus(p, s.u + max(Vn, 0.0) * dt_el, s.umax);
   if (p.dt_form == DtContactForm::Paper)
-    return p.C_safe * p.a * sqrt(rho_bar / E_pred);
-  return 2.0 * p.C_safe * sqrt(p.a * mu_star / max(E_pred, p.G));
+    return p.C_safe * p.a * kmath::sqrt(rho_bar / E_pred);
+  return 2.0 * p.C_safe * kmath::sqrt(p.a * mu_star / max(E_pred, p.G));
 }
 
 // ------------------------------------------------------------------------- update pieces ----
@@ -241,7 +241,7 @@ KOKKOS_INLINE_FUNCTION Real normalExplicit(const JointParams &p, CpState &s, Rea
 /// \brief Smaller root of z^2 - S z + P = 0 without cancellation (10.4).
 KOKKOS_INLINE_FUNCTION Real smallerRoot(Real S, Real P)
 {
-  const Real r = sqrt(max(S * S - 4.0 * P, 0.0));
+  const Real r = kmath::sqrt(max(S * S - 4.0 * P, 0.0));
   return S > 0 ? 2.0 * P / (S + r) : 0.5 * (S - r);
 }
 
@@ -346,7 +346,7 @@ KOKKOS_INLINE_FUNCTION Real shearUpdate(const JointParams &p, CpState &s, const 
   }
   const Real mag = norm(Fst);
   const Real phi = frictionAngle(p, s.usp); // start-of-step usp [A]
-  const Real tphi = tan(phi);
+  const Real tphi = kmath::tan(phi);
   const Real CA = p.C * Ac;
   const Real Fs_max = max(0.0, CA + Fn * tphi); // (3)
   Real scale = 1.0;
@@ -456,39 +456,6 @@ KOKKOS_INLINE_FUNCTION CpStepResult jointUpdate(const JointParams &p, CpState &s
   return r;
 }
 
-/// \brief Slide-line normal force with gaps (D14), clamped >= 0; advances u with the end-of-step
-/// relative velocity. Returns Fn and sets the end-of-step Vn'.
-KOKKOS_INLINE_FUNCTION Real slideLineNormal(CpState &s, const CpKinematics &k, Real &Vn1)
-{
-  const Real g = max(0.0, -s.u);
-  const Real Fn = max(0.0, k.mstar * (k.Vn - g / k.dt) / k.dt + k.Fint_n);
-  Vn1 = k.Vn + k.dt * (k.Fint_n - Fn) / k.mstar;
-  s.u += k.dt * Vn1;
-  s.umax = max(s.umax, s.u);
-  return Fn;
-}
-
-/// \brief Velocity-constraint options store nothing: the energy they take out is the work of the
-/// force on the mean of the start and end relative velocities of the model masses.
-KOKKOS_INLINE_FUNCTION void constraintFinish(CpState &s, const CpKinematics &k, const Real V0[3],
-                                             const Real F[3], CpStepResult &r)
-{
-  r.dW = 0;
-  for (int d = 0; d < 3; ++d)
-  {
-    const Real V1 = V0[d] + k.dt * ((k.Fint_n * k.n[d] + k.Fint_s[d]) - F[d]) / k.mstar;
-    r.dW += 0.5 * F[d] * (V0[d] + V1) * k.dt;
-  }
-  r.dPsi = 0, r.dD = r.dW, r.dW_area = 0, r.dusp = 0, r.opened = 0;
-  r.Fn = dot(F, k.n);
-  for (int d = 0; d < 3; ++d)
-    r.Fs[d] = F[d] - r.Fn * k.n[d];
-  s.Fn = r.Fn;
-  for (int d = 0; d < 3; ++d)
-    s.Fs[d] = r.Fs[d], s.n_old[d] = k.n[d];
-  s.Ac_old = k.Ac;
-}
-
 } // namespace JointImpl
 
 // ---------------------------------------------------------------------------- public API ----
@@ -509,90 +476,6 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateImplicit(const JointParams &p, CpState
                                                    const CpKinematics &k)
 {
   return JointImpl::jointUpdate(p, s, k, true);
-}
-
-/// \brief Slide line (24) with gaps (D14): Fn >= 0 stops the normal approach by the end of the
-/// step, no shear. Needs a finite m*.
-KOKKOS_INLINE_FUNCTION CpStepResult updateSlideLine(CpState &s, const CpKinematics &k)
-{
-  CpStepResult r;
-  Real Vn1;
-  const Real Fn = JointImpl::slideLineNormal(s, k, Vn1);
-  Real V0[3], F[3];
-  for (int d = 0; d < 3; ++d)
-    V0[d] = k.Vn * k.n[d] + k.Vs[d], F[d] = Fn * k.n[d];
-  r.slipped = 0;
-  JointImpl::constraintFinish(s, k, V0, F, r);
-  return r;
-}
-
-/// \brief Sticky (24) unclamped + (25): F = m*(V1 - V2)/dt + Fint, so the model masses end the
-/// step with V1' = V2'. No tension or Coulomb limit. A node shared by several CPs is
-/// over-corrected by one pass (10.8): the caller must repeat the velocity correction (Jacobi
-/// passes on v*, adding each pass's force) or share the node mass among its CPs.
-KOKKOS_INLINE_FUNCTION CpStepResult updateSticky(CpState &s, const CpKinematics &k)
-{
-  CpStepResult r;
-  Real V0[3], F[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    V0[d] = k.Vn * k.n[d] + k.Vs[d];
-    F[d] = k.mstar * V0[d] / k.dt + k.Fint_n * k.n[d] + k.Fint_s[d];
-  }
-  // V_n' = 0 by construction, so the tracked closure u stays as it is
-  r.slipped = 0;
-  JointImpl::constraintFinish(s, k, V0, F, r);
-  return r;
-}
-
-/// \brief Sleepy (D15): sticky while s.failed == 0; afterwards slide line (D14) with residual
-/// Coulomb friction Fs_max = tan(phi1) Fn (C = 0). The caller sets s.failed irreversibly.
-KOKKOS_INLINE_FUNCTION CpStepResult updateSleepy(const JointParams &p, CpState &s,
-                                                 const CpKinematics &k)
-{
-  using namespace ContactMath;
-  if (!s.failed)
-    return updateSticky(s, k);
-  CpStepResult r;
-  Real Vn1;
-  const Real Fn = JointImpl::slideLineNormal(s, k, Vn1);
-  Real Fst[3], V0[3], F[3];
-  for (int d = 0; d < 3; ++d)
-    Fst[d] = k.mstar * k.Vs[d] / k.dt + k.Fint_s[d]; // (25)
-  const Real mag = norm(Fst), Fs_max = tan(p.phi1) * Fn;
-  const Real scale = mag > Fs_max ? Fs_max / mag : 1.0;
-  r.slipped = mag > Fs_max ? 1 : 0;
-  for (int d = 0; d < 3; ++d)
-    V0[d] = k.Vn * k.n[d] + k.Vs[d], F[d] = Fn * k.n[d] + scale * Fst[d];
-  JointImpl::constraintFinish(s, k, V0, F, r);
-  return r;
-}
-
-/// \brief One active CP step with the option of p (section 11, Appendix A).
-KOKKOS_INLINE_FUNCTION CpStepResult updateCp(const JointParams &p, CpState &s,
-                                             const CpKinematics &k)
-{
-  switch (p.option)
-  {
-  case ContactOption::Explicit:
-    return updateExplicit(p, s, k);
-  case ContactOption::Implicit:
-    return updateImplicit(p, s, k);
-  case ContactOption::SlideLine:
-    return updateSlideLine(s, k);
-  case ContactOption::Sticky:
-    return updateSticky(s, k);
-  default:
-    return updateSleepy(p, s, k);
-  }
-}
-
-/// \brief Inactive CP (3.4): no force, history frozen except n_old <- n and u <- u + Vn dt.
-KOKKOS_INLINE_FUNCTION void updateInactiveCp(CpState &s, const Real n[3], Real Vn, Real dt)
-{
-  s.u += Vn * dt;
-  for (int d = 0; d < 3; ++d)
-    s.n_old[d] = n[d];
 }
 
 } // namespace scpdyn

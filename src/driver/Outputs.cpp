@@ -1,6 +1,9 @@
 #include "driver/Outputs.hpp"
 
 #include "driver/Solver.hpp"
+#include "material/MaterialLibrary.hpp"
+
+#include <map>
 
 #include <cmath>
 #include <cstdio>
@@ -92,9 +95,30 @@ void Outputs::writeFrame()
     ep[k] = eps(k);
     pt[k] = part(k);
   }
+  // named material history slots (damage, tensile_strength, burn_fraction, ...): one cell
+  // field per name, zero in elements whose material does not have it
+  auto history = Kokkos::create_mirror_view_and_copy(HostSpace(), el.history);
+  auto mat = Kokkos::create_mirror_view_and_copy(HostSpace(), el.material);
+  std::vector<std::vector<std::string>> names;
+  for (const auto &m : _solver.materialParams())
+    names.push_back(historyNames(m));
+  std::map<std::string, std::vector<double>> named;
+  for (size_t k = 0; k < ne; ++k)
+  {
+    const auto &n = names[size_t(mat(k))];
+    for (size_t slot = 0; slot < n.size(); ++slot)
+      if (!n[slot].empty())
+      {
+        auto &field = named[n[slot]];
+        field.resize(ne, 0.0);
+        field[k] = history(k, slot);
+      }
+  }
   f.cell_tensors6.push_back({"stress", s6});
   f.cell_scalars = {{"pressure", p}, {"density", rho}, {"specific_internal_energy", e},
                     {"plastic_strain", ep}, {"part", pt}};
+  for (auto &kv : named)
+    f.cell_scalars.push_back({kv.first, std::move(kv.second)});
   _fields->write(f);
 }
 

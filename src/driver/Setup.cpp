@@ -471,6 +471,15 @@ void Solver::setupInitialState()
     }
   Kokkos::deep_copy(_nodes.v, h_v);
 
+  // initial specific internal energy (the detonation energy of an explosive)
+  {
+    auto h_energy = Kokkos::create_mirror_view(_elems.energy);
+    auto h_mat = Kokkos::create_mirror_view_and_copy(HostSpace(), _elems.material);
+    for (Index e = 0; e < _elems.count; ++e)
+      h_energy(e) = initialSpecificEnergy(_materials_host[size_t(h_mat(e))]);
+    Kokkos::deep_copy(_elems.energy, h_energy);
+  }
+
   // material history (e.g. lighting times) from element centroids
   auto conn = _elems.conn;
   auto x = _nodes.x;

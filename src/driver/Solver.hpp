@@ -67,6 +67,7 @@ public:
   const std::vector<GaugeSlot> &gauges() const { return _gauges; }
   const StepTimers &timers() const { return _timers; }
   const std::vector<ElementGroup> &groups() const { return _groups; }
+  const std::vector<MaterialParams> &materialParams() const { return _materials_host; }
   /// \brief Device element id of a mesh element id (parts numbered in deck order).
   Index deviceElement(Index mesh_element) const { return _host_to_device_element[size_t(mesh_element)]; }
   /// \brief Current energies and momentum (reduces over elements; not free).

@@ -47,8 +47,10 @@ KOKKOS_INLINE_FUNCTION Real hourglassBase(int k, int a)
   }
 }
 
-/// \brief Hourglass forces (added to f) for one element. Q holds the stiffness-form
-/// resistances (count x 3), updated in place. Returns the hourglass power -sum f.v [W].
+/// \brief Hourglass forces (added to f) for one element. Q holds the resistances of the
+/// previous step (count x 3; accumulated in the stiffness form), updated in place. Returns the
+/// hourglass power with the step's mean resistance 1/2 (Q_old + Q_new) . qdot [W], as the
+/// leapfrog's kinetic energy sees the mean of the forces at n-1/2 and n+1/2.
 template <ElementType T>
 KOKKOS_INLINE_FUNCTION Real hourglassForces(const Real x[][3], const Real v[][3], const Real B[][3],
                                             Real V, Real rho, Real c, HourglassType type,
@@ -89,15 +91,12 @@ KOKKOS_INLINE_FUNCTION Real hourglassForces(const Real x[][3], const Real v[][3]
         Real qdot = 0;
         for (int a = 0; a < N; ++a)
           qdot += gamma[a] * v[a][i];
-        Real Qki;
-        if (type == HourglassType::Viscous)
-          Qki = visc * qdot;
-        else
-        {
-          Q[3 * k + i] += stiff * qdot;
-          Qki = Q[3 * k + i];
-        }
-        power += Qki * qdot;
+        const Real Q_old = Q[3 * k + i];
+        const Real Qki = type == HourglassType::Viscous ? visc * qdot : Q_old + stiff * qdot;
+        Q[3 * k + i] = Qki;
+        // trapezoidal work: exact 1/2 k q^2 for the stiffness form; without it the one-sided
+        // Q_new qdot books k (dq)^2 extra every step and the hourglass "energy" grows forever
+        power += 0.5 * (Q_old + Qki) * qdot;
         for (int a = 0; a < N; ++a)
           f[a][i] -= gamma[a] * Qki;
       }

@@ -24,7 +24,7 @@ struct ElementControls
 
 /// \brief Run the element solvers of all groups; forces go to nodes.f_int (atomic) or to
 /// corners.corner_force (gather; then call gatherCornerForces). Returns the smallest stable
-/// element time step h / (Q + sqrt(Q^2 + c^2)) before the Courant factor; a negative value
+/// element time step h / c before the Courant factor; a negative value
 /// -(e+1) reports an inverted element e.
 Real computeElementForces(const std::vector<ElementGroup> &groups, const ElementControls &ctl,
                           const NodeFields &nodes, const ElementFields &elems,

@@ -95,6 +95,45 @@ struct GaugeSpec
   std::vector<std::string> quantities;  ///< see docs/input.md
 };
 
+/// \brief One contact surface (docs/input.md, `contact.surfaces[]`): the external faces it covers
+/// (a part, a `prefix*` of parts, or a face set) and the face-based contact condition they
+/// carry. Joint parameters are kept in the units of the paper's Table 1, as written in the deck
+/// (mm, GPa, degrees); the contact room converts them to SI (contact/ContactSetup.cpp).
+struct SurfaceSpec
+{
+  std::string name;
+  std::string part;       ///< part name or `prefix*` (exactly one of part, face_set is set)
+  std::string face_set;   ///< face set name
+  std::string option = "implicit";  ///< slide_line | sticky | explicit | implicit
+  Real a = 0.1;           ///< aperture [mm]
+  Real E0 = 0.05;         ///< initial normal modulus E0 = Kn a [GPa]
+  Real G = 0.05;          ///< shear modulus G = Ks a [GPa]
+  Real C = 0.001;         ///< cohesion [GPa]
+  Real phi0 = 40;         ///< initial friction angle [deg]
+  Real phi1 = 10;         ///< residual friction angle [deg]
+  Real usp0 = 100;        ///< characteristic slip of softening, in apertures [-]
+  Real psi0 = 0;          ///< initial dilation angle [deg]
+  Real sigma_cr = 0.1;    ///< no dilation above this normal stress [GPa]
+  Real Emax = -1;         ///< modulus cut-off [GPa]; < 0: auto (1e4 E0)
+  Real sigma_t = -1;      ///< tensile strength [GPa]; < 0: auto (C/tan(phi0))
+  Real C_safe = 0.5;      ///< safety factor of the explicit time-step limit; infinity: off
+  std::string dt_form = "mass_spring";         ///< mass_spring | paper
+  std::string dilation_update = "consistent";  ///< consistent | explicit
+  std::string distribution = "penetration";    ///< penetration | poc
+  bool traction_history = true;
+  bool implicit_shear = true;
+  bool brittle_tension = false;
+};
+
+/// \brief The contact section: no surfaces means no contact.
+struct ContactSpec
+{
+  std::vector<SurfaceSpec> surfaces;
+  long search_interval = 1;  ///< cycles between CP searches; 0 = once, at the first cycle
+  int constraint_passes = 5; ///< correction passes of the sticky and slide-line CPs (spec 10.8)
+  Real search_gap = -1;      ///< largest gap at which a CP is created [m]; < 0: largest face size
+};
+
 struct Deck
 {
   std::string title;
@@ -129,6 +168,7 @@ struct Deck
   std::vector<TimeFunction> functions;
   std::vector<BoundaryConditionSpec> boundary_conditions;
   std::vector<GaugeSpec> gauges;
+  ContactSpec contact;
 };
 
 /// \brief Parse and validate a deck; throws InputError naming key path and line.

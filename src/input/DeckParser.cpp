@@ -239,7 +239,8 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
     const YamlMap root = YamlValue(docs[0], "", docs[0].Mark().line + 1)
                              .map({"title", "dimension", "geometry", "time", "numerics",
                                    "gravity", "output", "materials", "parts", "node_sets",
-                                   "face_sets", "functions", "boundary_conditions", "gauges"});
+                                   "face_sets", "functions", "boundary_conditions", "gauges",
+                                   "contact"});
     deck.title = root.string("title", stem);
     if (!root.has("dimension"))
       root.missing("dimension");
@@ -268,6 +269,7 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
     parseParts(root, deck, names, dir);
     parseSetsAndConditions(root, deck, names);
     parseGauges(root, deck);
+    parseContact(root, deck, names);
     return deck;
   }
   catch (const InputError &e)

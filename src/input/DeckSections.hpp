@@ -45,6 +45,8 @@ void parseParts(const YamlMap &root, Deck &deck, DeckNames &names,
 void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names);
 /// \brief gauges[].
 void parseGauges(const YamlMap &root, Deck &deck);
+/// \brief contact (DeckContact.cpp); after the parts and sets it refers to.
+void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names);
 
 } // namespace Impl
 } // namespace scpdyn

@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -148,6 +149,57 @@ void writeGauge(YAML::Emitter &out, const GaugeSpec &g, int dim)
   out << YAML::EndMap;
 }
 
+void writeContact(YAML::Emitter &out, const ContactSpec &c)
+{
+  out << YAML::Key << "contact" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "search_interval" << YAML::Value;
+  if (c.search_interval == 0)
+    out << "once";
+  else
+    out << c.search_interval;
+  out << YAML::Key << "constraint_passes" << YAML::Value << c.constraint_passes;
+  if (c.search_gap > 0) // no key: the largest contact-face size
+    real(out << YAML::Key << "search_gap" << YAML::Value, c.search_gap);
+  beginList(out, "surfaces", c.surfaces.empty());
+  for (const SurfaceSpec &s : c.surfaces)
+  {
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value;
+    text(out, s.name);
+    if (!s.part.empty())
+      text(out << YAML::Key << "part" << YAML::Value, s.part);
+    else
+      text(out << YAML::Key << "face_set" << YAML::Value, s.face_set);
+    out << YAML::Key << "option" << YAML::Value << s.option;
+    const std::pair<const char *, Real> values[] = {
+        {"a", s.a},       {"E0", s.E0},     {"G", s.G},       {"C", s.C},
+        {"phi0", s.phi0}, {"phi1", s.phi1}, {"usp0", s.usp0}, {"psi0", s.psi0},
+        {"sigma_cr", s.sigma_cr}};
+    for (const auto &kv : values)
+      real(out << YAML::Key << kv.first << YAML::Value, kv.second);
+    for (const auto &kv : {std::make_pair("Emax", s.Emax), std::make_pair("sigma_t", s.sigma_t)})
+    {
+      out << YAML::Key << kv.first << YAML::Value;
+      if (kv.second < 0)
+        out << "auto";
+      else
+        real(out, kv.second);
+    }
+    out << YAML::Key << "C_safe" << YAML::Value;
+    if (std::isinf(s.C_safe))
+      out << "off";
+    else
+      real(out, s.C_safe);
+    out << YAML::Key << "dt_form" << YAML::Value << s.dt_form;
+    out << YAML::Key << "dilation_update" << YAML::Value << s.dilation_update;
+    out << YAML::Key << "distribution" << YAML::Value << s.distribution;
+    out << YAML::Key << "traction_history" << YAML::Value << s.traction_history;
+    out << YAML::Key << "implicit_shear" << YAML::Value << s.implicit_shear;
+    out << YAML::Key << "brittle_tension" << YAML::Value << s.brittle_tension;
+    out << YAML::EndMap;
+  }
+  out << YAML::EndSeq << YAML::EndMap;
+}
+
 } // namespace
 
 void writeResolvedDeck(const Deck &deck, const std::string &file)
@@ -225,7 +277,9 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   beginList(out, "gauges", deck.gauges.empty());
   for (const auto &g : deck.gauges)
     writeGauge(out, g, dim);
-  out << YAML::EndSeq << YAML::EndMap;
+  out << YAML::EndSeq;
+  writeContact(out, deck.contact);
+  out << YAML::EndMap;
   if (!out.good())
     throw std::runtime_error("writeResolvedDeck: YAML emitter error: " + out.GetLastError());
 

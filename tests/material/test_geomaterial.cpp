@@ -33,9 +33,9 @@ MaterialSpec concrete()
                   {{"density", 2440},          {"bulk_modulus", 16e9},
                    {"shear_modulus", 14.86e9}, {"porosity", 0.0823},
                    {"crush_pressure", 16e6},   {"lock_pressure", 800e6},
-                   {"solid_bulk_modulus", 85e9}, {"intact_strength", 37.9e6},
-                   {"intact_friction", 2.1},   {"max_strength", 336e6},
-                   {"damaged_friction", 1.4},  {"tensile_strength", 4e6},
+                   {"solid_bulk_modulus", 85e9}, {"intact_strength", 12e6},
+                   {"intact_friction", 2.53},  {"max_strength", 336e6},
+                   {"damaged_friction", 1.05}, {"tensile_strength", 4e6},
                    {"damage_strain", 0.002},   {"dilatancy", 0.2},
                    {"dilatancy_pressure", 100e6}, {"compaction_hardening", 0.3}});
 }

@@ -1,0 +1,202 @@
+#pragma once
+/// \file bench_common.hpp
+/// \brief Shared set-up of the perf/ drivers: the box deck, a Solver per scatter mode, the
+/// per-element-cycle counters, a malloc counter and main() (Kokkos + Google Benchmark).
+/// Include from exactly one translation unit per executable (it defines malloc & co.).
+#include "driver/Solver.hpp"
+#include "input/Deck.hpp"
+#include "material/MaterialLibrary.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+// ---- allocation counter -------------------------------------------------------------------
+// Every heap allocation of the process (operator new, Kokkos View allocations, libc) goes
+// through these glibc entry points, so a cycle that allocates shows up as allocs_per_cycle > 0.
+extern "C" void *__libc_malloc(size_t);
+extern "C" void *__libc_calloc(size_t, size_t);
+extern "C" void *__libc_realloc(void *, size_t);
+extern "C" void *__libc_memalign(size_t, size_t);
+namespace scpdyn_bench
+{
+inline std::atomic<long> g_allocations{0};
+}
+extern "C" void *malloc(size_t n)
+{
+  scpdyn_bench::g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(n);
+}
+extern "C" void *calloc(size_t n, size_t s)
+{
+  scpdyn_bench::g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(n, s);
+}
+extern "C" void *realloc(void *p, size_t n)
+{
+  scpdyn_bench::g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(p, n);
+}
+extern "C" int posix_memalign(void **p, size_t a, size_t n)
+{
+  scpdyn_bench::g_allocations.fetch_add(1, std::memory_order_relaxed);
+  *p = __libc_memalign(a, n);
+  return *p || n == 0 ? 0 : 12; // ENOMEM
+}
+extern "C" void *aligned_alloc(size_t a, size_t n)
+{
+  scpdyn_bench::g_allocations.fetch_add(1, std::memory_order_relaxed);
+  return __libc_memalign(a, n);
+}
+
+namespace scpdyn_bench
+{
+using namespace scpdyn;
+
+constexpr int kBoxCells = 64; ///< the box is kBoxCells^3 hex8 elements
+
+/// \brief Objects holding Views, released by main() before Kokkos::finalize.
+inline std::vector<std::shared_ptr<void>> &keepAlive()
+{
+  static std::vector<std::shared_ptr<void>> objects;
+  return objects;
+}
+
+/// \brief The perf deck (same physics as perf/box64.yaml): elastic steel cube at 10 m/s
+/// against a rigid wall at x = 0.
+inline std::string boxDeck(int n, const std::string &scatter)
+{
+  const std::string cells = std::to_string(n);
+  return "title: bench box\n"
+         "dimension: 3\n"
+         "time: {end: 1.0, courant: 0.5}\n"
+         "numerics: {scatter: " + scatter + "}\n"
+         "materials:\n"
+         "  - {name: steel, model: elastic, density: 7850, youngs_modulus: 200.0e9, "
+         "poisson_ratio: 0.3}\n"
+         "parts:\n"
+         "  - name: box\n"
+         "    material: steel\n"
+         "    mesh: {type: block, element: hex8, elements: [" + cells + ", " + cells + ", " +
+         cells + "], size: [1, 1, 1]}\n"
+         "    initial_velocity: [-10.0, 0.0, 0.0]\n"
+         "node_sets:\n"
+         "  - {name: wall, box: {min: [0, 0, 0], max: [0, 1, 1]}}\n"
+         "boundary_conditions:\n"
+         "  - {type: velocity, node_set: wall, component: x, value: 0.0}\n";
+}
+
+/// \brief One Solver per scatter mode, built once and advanced 20 cycles so that the wave
+/// (and with it the compressive bulk-viscosity branch) is in the box.
+inline Solver &boxSolver(const std::string &scatter)
+{
+  static std::map<std::string, Solver *> cache;
+  Solver *&s = cache[scatter];
+  if (!s)
+  {
+    auto owned = std::make_shared<Solver>(parseDeckString(boxDeck(kBoxCells, scatter), "bench_box.yaml"));
+    for (int k = 0; k < 20; ++k)
+      owned->cycle();
+    s = owned.get();
+    keepAlive().push_back(owned);
+  }
+  return *s;
+}
+
+/// \brief Kernel inputs the Solver keeps private, rebuilt here from its deck and
+/// connectivity exactly as Setup.cpp builds them.
+struct KernelExtras
+{
+  DeviceView<MaterialParams *> materials;
+  NodeCorners corners;
+};
+
+inline KernelExtras makeKernelExtras(const Solver &s)
+{
+  KernelExtras k;
+  const Deck &deck = s.deck();
+  k.materials = DeviceView<MaterialParams *>("bench_materials", deck.materials.size());
+  auto h_mat = Kokkos::create_mirror_view(k.materials);
+  for (size_t i = 0; i < deck.materials.size(); ++i)
+    h_mat(i) = makeMaterialParams(deck.materials[i]);
+  Kokkos::deep_copy(k.materials, h_mat);
+
+  const ElementFields &el = s.elements();
+  const Index nn = s.nodes().count;
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), el.conn);
+  std::vector<std::vector<Index>> lists(static_cast<size_t>(nn));
+  for (Index e = 0; e < el.count; ++e)
+    for (int a = 0; a < kMaxElementNodes; ++a)
+      if (conn(e, a) >= 0)
+        lists[size_t(conn(e, a))].push_back(e * kMaxElementNodes + a);
+  k.corners.offsets = IndexView("bench_offsets", size_t(nn) + 1);
+  auto h_off = Kokkos::create_mirror_view(k.corners.offsets);
+  std::vector<Index> flat;
+  h_off(0) = 0;
+  for (Index n = 0; n < nn; ++n)
+  {
+    flat.insert(flat.end(), lists[size_t(n)].begin(), lists[size_t(n)].end());
+    h_off(n + 1) = Index(flat.size());
+  }
+  k.corners.corners = IndexView("bench_corners", flat.size());
+  auto h_list = Kokkos::create_mirror_view(k.corners.corners);
+  std::copy(flat.begin(), flat.end(), h_list.data());
+  Kokkos::deep_copy(k.corners.offsets, h_off);
+  Kokkos::deep_copy(k.corners.corners, h_list);
+  k.corners.corner_force = DeviceView<Real * [kMaxElementNodes][3]>("bench_corner_force", size_t(el.count));
+  return k;
+}
+
+/// \brief The element controls the Solver would use this cycle (deck defaults).
+inline ElementControls controlsOf(const Solver &s, bool gather)
+{
+  const Deck &d = s.deck();
+  ElementControls c;
+  c.dt = s.dt();
+  c.half_time = s.time() + 0.5 * s.dt();
+  c.geometry = d.geometry;
+  c.hourglass = d.hourglass_type == "stiffness" ? HourglassType::Stiffness : HourglassType::Viscous;
+  c.hourglass_coefficient = d.hourglass_coefficient;
+  c.q_linear = d.bulk_viscosity_linear;
+  c.q_quadratic = d.bulk_viscosity_quadratic;
+  c.gather = gather;
+  return c;
+}
+
+/// \brief Seconds per element-cycle (printed as ns; real time; Kokkos threads are not benchmark threads) and the
+/// thread count, as counters.
+inline void setCounters(benchmark::State &state, double elements_per_iteration)
+{
+  state.counters["ns_per_elem_cycle"] =
+      benchmark::Counter(elements_per_iteration * double(state.iterations()),
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["threads"] = double(ExecSpace().concurrency());
+  state.counters["elements"] = elements_per_iteration;
+}
+
+} // namespace scpdyn_bench
+
+/// Kokkos reads OMP_NUM_THREADS at initialize: run one process per thread count.
+#define SCPDYN_BENCH_MAIN()                                                                    \
+  int main(int argc, char **argv)                                                              \
+  {                                                                                            \
+    Kokkos::initialize(argc, argv);                                                            \
+    int rc = 0;                                                                                \
+    {                                                                                          \
+      benchmark::Initialize(&argc, argv);                                                      \
+      if (benchmark::ReportUnrecognizedArguments(argc, argv))                                  \
+        rc = 1;                                                                                \
+      else                                                                                     \
+        benchmark::RunSpecifiedBenchmarks();                                                   \
+      benchmark::Shutdown();                                                                   \
+      scpdyn_bench::keepAlive().clear();                                                       \
+    }                                                                                          \
+    Kokkos::finalize();                                                                        \
+    return rc;                                                                                 \
+  }

@@ -1,0 +1,66 @@
+#pragma once
+/// \file ContactData.hpp
+/// \brief Device data of the common-plane contact: the contact faces (fixed for the run) and the
+/// common planes (CPs), each a struct of Views indexed by face or CP id (scp-method.md 3, 12).
+#include "contact/ContactParams.hpp"
+
+#include <string>
+#include <vector>
+
+namespace scpdyn
+{
+
+/// \brief External faces that carry a contact condition, in ascending global face key
+/// (mesh element id * 8 + local face, 3.5): the face of a CP with the smaller index is face 1.
+struct ContactFaceData
+{
+  Index count = 0;
+  DeviceView<Index * [kMaxFaceNodes]> nodes; ///< outward-ordered nodes, -1 padded
+  IndexView num_nodes;
+  IndexView element;        ///< device element id of the element behind the face
+  IndexView surface;        ///< contact surface (face-BC id) of the face
+  RealView mass;            ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
+  IndexView rigid;          ///< 1 when every node of the face has all velocity components prescribed
+  DeviceView<JointParams *> params; ///< per surface, resolved SI parameters
+  IndexView nodes_used;     ///< the distinct nodes of all contact faces, ascending
+};
+
+/// \brief Host description of a contact face, for messages and outputs.
+struct ContactFaceInfo
+{
+  long key = 0;          ///< global face key
+  Index mesh_element = -1;
+  int local_face = -1;
+  int part = -1;         ///< mesh part index
+};
+
+/// \brief The live common planes. `face1 < face2` (face indices), sorted by (face1, face2), so a
+/// face pair is found by binary search. The per-cycle fields are rewritten every cycle.
+struct CommonPlaneData
+{
+  Index count = 0;
+  IndexView face1, face2;
+  DeviceView<CpState *> state;   ///< history (section 12)
+  DeviceView<JointParams *> params; ///< averaged parameters of the two faces (3.6)
+  // per cycle
+  VectorView normal;             ///< CP normal n, face 1 -> face 2
+  VectorView poc;                ///< point of contact x_poc [m]
+  VectorView force;              ///< total CP force on face 2 [N]
+  RealView area;                 ///< contact area Ac [m^2]
+  RealView face_area1, face_area2; ///< A1, A2 of the faces [m^2]
+  RealView mstar;                ///< reduced mass m* [kg]
+  RealView stored;               ///< stored elastic energy Psi [J]
+  DeviceView<Real * [kMaxFaceNodes]> w1, w2; ///< nodal weights of the force on face 1, 2
+  IndexView status;              ///< CpStatus
+};
+
+/// \brief Per-CP status written to the outputs.
+enum CpStatus : int
+{
+  CpInactive = 0, ///< no overlap (3.4): no force
+  CpStick = 1,    ///< active, sticking (or a velocity constraint)
+  CpSlip = 2,     ///< active, slipped this cycle
+  CpOpen = 3      ///< active, joint open or slide line without compression: no force
+};
+
+} // namespace scpdyn

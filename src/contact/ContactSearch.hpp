@@ -1,0 +1,85 @@
+#pragma once
+/// \file ContactSearch.hpp
+/// \brief Detection of common planes (scp-method.md 3.1-3.2): half-step face geometry, global
+/// sorting bins (a uniform grid, compressed rows built by count -> scan -> fill) and the
+/// candidate face pairs with positive overlap. Device kernels; results are deterministic (every
+/// bin and every row is sorted).
+#include "contact/CommonPlaneGeometry.hpp"
+#include "contact/ContactData.hpp"
+#include "core/Fields.hpp"
+
+namespace scpdyn
+{
+
+/// \brief Centroid, outward normal, area and diameter of every contact face at x^{n+1/2}.
+struct FaceGeometryData
+{
+  VectorView centroid, normal;
+  RealView area, diameter;
+  IndexView valid;
+  Real h_max = 0; ///< largest face diameter [m]
+};
+
+/// \brief Faces sorted into a uniform grid of cubic bins of edge `size` (compressed rows).
+struct FaceBins
+{
+  Real lo[3] = {0, 0, 0};
+  Real size = 1;
+  int dims[3] = {1, 1, 1};
+  IndexView offsets; ///< bins + 1
+  IndexView faces;   ///< face ids, ascending within a bin
+  IndexView bin_of;  ///< bin of every face
+};
+
+/// \brief Candidate face pairs (face1 < face2), sorted by (face1, face2).
+struct CandidatePairs
+{
+  Index count = 0;
+  IndexView face1, face2;
+};
+
+/// \brief Half-step positions of the nodes of face `f`: x + half_dt v (sub-step A) [m].
+KOKKOS_INLINE_FUNCTION int gatherHalfStep(const ContactFaceData &F, Index f, const VectorView &x,
+                                          const VectorView &v, Real half_dt, Real xh[][3])
+{
+  const int nn = F.num_nodes(f);
+  for (int a = 0; a < nn; ++a)
+  {
+    const Index k = F.nodes(f, a);
+    for (int d = 0; d < 3; ++d)
+      xh[a][d] = x(k, d) + half_dt * v(k, d);
+  }
+  return nn;
+}
+
+/// \brief Sub-steps A-D for the face pair (f1, f2) in dimension `dim` (2 or 3); `x1`, `x2`
+/// receive the half-step node positions.
+KOKKOS_INLINE_FUNCTION CpGeometry pairGeometry(const ContactFaceData &F, Index f1, Index f2,
+                                               const VectorView &x, const VectorView &v,
+                                               Real half_dt, int dim, bool axisym, Real x1[][3],
+                                               Real x2[][3])
+{
+  const int n1 = gatherHalfStep(F, f1, x, v, half_dt, x1);
+  const int n2 = gatherHalfStep(F, f2, x, v, half_dt, x2);
+  return dim == 2 ? computeCommonPlane<2>(x1, n1, x2, n2, axisym)
+                  : computeCommonPlane<3>(x1, n1, x2, n2, axisym);
+}
+
+/// \brief Face geometry at x^{n+1/2} = x + dt/2 v for every contact face; sets h_max.
+void computeFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real dt, int dim,
+                         bool axisym, FaceGeometryData &G);
+
+/// \brief Step 3: sort the faces into bins of edge `bin_size` by their centroids. The grid is
+/// coarsened when it would have more than 4 bins per face.
+void sortFacesIntoBins(const FaceGeometryData &G, Index num_faces, int dim, Real bin_size,
+                       FaceBins &bins);
+
+/// \brief Candidate pairs of 3.2 among faces in the same or neighbouring bins (3^dim stencil):
+/// opposing normals, different elements, no shared node, each face on the right side of the
+/// other (within half the smaller face size), gap -u0 <= g_search, and overlap
+/// Ac > eps_A min(A1, A2) at the half step.
+CandidatePairs findCandidatePairs(const ContactFaceData &F, const FaceGeometryData &G,
+                                  const FaceBins &bins, const NodeFields &nodes, Real dt, int dim,
+                                  bool axisym, Real g_search);
+
+} // namespace scpdyn

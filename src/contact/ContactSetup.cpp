@@ -1,0 +1,190 @@
+// Contact set-up (step 2 of the paper's cycle): surfaces -> contact faces on device.
+#include "contact/ContactSetup.hpp"
+
+#include "mesh/MeshOps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace scpdyn
+{
+namespace
+{
+
+constexpr Real kDegree = 3.14159265358979323846 / 180.0;
+constexpr Real kGPa = 1.0e9;
+
+/// part `name` or the parts a generator expanded from it ("name.<...>"), as node/face sets do
+bool partMatches(const std::string &part_name, const std::string &pattern)
+{
+  if (!pattern.empty() && pattern.back() == '*')
+    return part_name.rfind(pattern.substr(0, pattern.size() - 1), 0) == 0;
+  return part_name == pattern ||
+         (part_name.size() > pattern.size() && part_name.compare(0, pattern.size(), pattern) == 0 &&
+          part_name[pattern.size()] == '.');
+}
+
+std::array<Index, kMaxFaceNodes> sortedNodes(const HostFace &f)
+{
+  std::array<Index, kMaxFaceNodes> s = f.nodes;
+  std::sort(s.begin(), s.begin() + f.num_nodes);
+  return s;
+}
+
+} // namespace
+
+JointParams jointParamsOf(const SurfaceSpec &s, int bc_id)
+{
+  JointParams p;
+  p.a = s.a * 1e-3;
+  p.E0 = s.E0 * kGPa;
+  p.G = s.G * kGPa;
+  p.C = s.C * kGPa;
+  p.phi0 = s.phi0 * kDegree;
+  p.phi1 = s.phi1 * kDegree;
+  p.usp0 = s.usp0;
+  p.psi0 = s.psi0 * kDegree;
+  p.sigma_cr = s.sigma_cr * kGPa;
+  p.Emax = s.Emax < 0 ? -1.0 : s.Emax * kGPa;
+  p.sigma_t = s.sigma_t < 0 ? -1.0 : s.sigma_t * kGPa;
+  p.C_safe = std::isinf(s.C_safe) ? 1e300 : s.C_safe;
+  p.option = s.option == "slide_line" ? ContactOption::SlideLine
+             : s.option == "sticky"   ? ContactOption::Sticky
+             : s.option == "explicit" ? ContactOption::Explicit
+                                      : ContactOption::Implicit;
+  p.dilation_update =
+      s.dilation_update == "explicit" ? DilationUpdate::Explicit : DilationUpdate::Consistent;
+  p.dt_form = s.dt_form == "paper" ? DtContactForm::Paper : DtContactForm::MassSpring;
+  p.distribution = s.distribution == "poc" ? DistributionRule::Poc : DistributionRule::Penetration;
+  p.traction_history = s.traction_history;
+  p.implicit_shear = s.implicit_shear;
+  p.brittle_tension = s.brittle_tension;
+  p.bc_id = bc_id;
+  return resolveParams(p);
+}
+
+ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<ContactFaceInfo> &info)
+{
+  const Deck &deck = *in.deck;
+  const HostMesh &mesh = *in.mesh;
+  const std::vector<HostFace> &external = *in.external_faces;
+
+  // external faces by their node set, so faces of any face set (box, part, gmsh group) map back
+  std::map<std::array<Index, kMaxFaceNodes>, size_t> by_nodes;
+  for (size_t k = 0; k < external.size(); ++k)
+    by_nodes[sortedNodes(external[k])] = k;
+
+  std::vector<int> surface_of(external.size(), -1);
+  for (size_t s = 0; s < deck.contact.surfaces.size(); ++s)
+  {
+    const SurfaceSpec &spec = deck.contact.surfaces[s];
+    const std::string key = deck.path + ": contact.surfaces[" + std::to_string(s) + "]";
+    size_t selected = 0;
+    auto take = [&](size_t k) {
+      ++selected;
+      if (surface_of[k] < 0)
+        surface_of[k] = int(s);
+    };
+    if (!spec.part.empty())
+    {
+      for (size_t k = 0; k < external.size(); ++k)
+        if (partMatches(mesh.parts[size_t(external[k].part)].name, spec.part))
+          take(k);
+      if (selected == 0)
+        throw InputError(key + ".part: no external face belongs to a part matching '" + spec.part +
+                         "'");
+    }
+    else
+    {
+      const auto it = in.face_sets->find(spec.face_set);
+      if (it == in.face_sets->end())
+        throw InputError(key + ".face_set: unknown face set '" + spec.face_set + "'");
+      for (const HostFace &f : it->second)
+      {
+        const auto e = by_nodes.find(sortedNodes(f));
+        if (e == by_nodes.end())
+          throw InputError(key + ".face_set: face set '" + spec.face_set +
+                           "' holds a face that is not an external element face");
+        take(e->second);
+      }
+      if (selected == 0)
+        throw InputError(key + ".face_set: face set '" + spec.face_set + "' is empty");
+    }
+  }
+
+  std::vector<size_t> chosen;
+  for (size_t k = 0; k < external.size(); ++k)
+    if (surface_of[k] >= 0)
+      chosen.push_back(k);
+  auto keyOf = [&](size_t k) { return long(external[k].element) * 8 + external[k].local_face; };
+  std::sort(chosen.begin(), chosen.end(), [&](size_t a, size_t b) { return keyOf(a) < keyOf(b); });
+
+  ContactFaceData F;
+  const size_t nf = chosen.size();
+  F.count = Index(nf);
+  F.nodes = DeviceView<Index * [kMaxFaceNodes]>("contact_face_nodes", nf);
+  F.num_nodes = IndexView("contact_face_num_nodes", nf);
+  F.element = IndexView("contact_face_element", nf);
+  F.surface = IndexView("contact_face_surface", nf);
+  F.mass = RealView("contact_face_mass", nf);
+  F.rigid = IndexView("contact_face_rigid", nf);
+  auto h_nodes = Kokkos::create_mirror_view(F.nodes);
+  auto h_nn = Kokkos::create_mirror_view(F.num_nodes);
+  auto h_el = Kokkos::create_mirror_view(F.element);
+  auto h_surf = Kokkos::create_mirror_view(F.surface);
+  auto h_mass = Kokkos::create_mirror_view(F.mass);
+  auto h_rigid = Kokkos::create_mirror_view(F.rigid);
+  auto h_emass = Kokkos::create_mirror_view_and_copy(HostSpace(), in.elems.mass);
+  auto h_bc = Kokkos::create_mirror_view_and_copy(HostSpace(), in.nodes.bc);
+  const int dim = deck.dimension;
+  std::vector<Index> used;
+  info.assign(nf, ContactFaceInfo());
+  for (size_t i = 0; i < nf; ++i)
+  {
+    const HostFace &f = external[chosen[i]];
+    const Index d = (*in.host_to_device_element)[size_t(f.element)];
+    const ElementType type = mesh.parts[size_t(f.part)].type;
+    h_nn(i) = f.num_nodes;
+    h_el(i) = d;
+    h_surf(i) = surface_of[chosen[i]];
+    // (10.1): the element's mass per node times the face's nodes
+    h_mass(i) = h_emass(d) * Real(f.num_nodes) / Real(nodesPerElement(type));
+    int prescribed = 0;
+    for (int a = 0; a < kMaxFaceNodes; ++a)
+    {
+      h_nodes(i, a) = a < f.num_nodes ? f.nodes[size_t(a)] : -1;
+      if (a < f.num_nodes)
+      {
+        used.push_back(f.nodes[size_t(a)]);
+        for (int c = 0; c < dim; ++c)
+          prescribed += h_bc(f.nodes[size_t(a)], c) >= 0 ? 1 : 0;
+      }
+    }
+    h_rigid(i) = prescribed == f.num_nodes * dim ? 1 : 0;
+    info[i] = {keyOf(chosen[i]), f.element, f.local_face, f.part};
+  }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  F.nodes_used = IndexView("contact_nodes", used.size());
+  auto h_used = Kokkos::create_mirror_view(F.nodes_used);
+  for (size_t k = 0; k < used.size(); ++k)
+    h_used(k) = used[k];
+
+  F.params = DeviceView<JointParams *>("contact_surface_params", deck.contact.surfaces.size());
+  auto h_params = Kokkos::create_mirror_view(F.params);
+  for (size_t s = 0; s < deck.contact.surfaces.size(); ++s)
+    h_params(s) = jointParamsOf(deck.contact.surfaces[s], int(s));
+
+  Kokkos::deep_copy(F.nodes, h_nodes);
+  Kokkos::deep_copy(F.num_nodes, h_nn);
+  Kokkos::deep_copy(F.element, h_el);
+  Kokkos::deep_copy(F.surface, h_surf);
+  Kokkos::deep_copy(F.mass, h_mass);
+  Kokkos::deep_copy(F.rigid, h_rigid);
+  Kokkos::deep_copy(F.nodes_used, h_used);
+  Kokkos::deep_copy(F.params, h_params);
+  return F;
+}
+
+} // namespace scpdyn

@@ -1,0 +1,165 @@
+/// \file DeckContact.cpp
+/// \brief The `contact` section of the deck: search controls and the contact surfaces with their
+/// face-based contact conditions (docs/input.md). Joint parameters are read in the units of the
+/// paper's Table 1 (mm, GPa, degrees) and stored as written; the contact room converts to SI.
+#include "input/DeckSections.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace scpdyn
+{
+namespace Impl
+{
+namespace
+{
+
+const std::vector<std::string> kSurfaceKeys = {
+    "name",     "part",  "face_set", "option",  "a",       "E0",
+    "G",        "C",     "phi0",     "phi1",    "usp0",    "psi0",
+    "sigma_cr", "Emax",  "sigma_t",  "C_safe",  "dt_form", "dilation_update",
+    "distribution", "traction_history", "implicit_shear", "brittle_tension"};
+
+/// A Table 1 stress or modulus in GPa; values that only make sense in Pa get a unit hint.
+Real readGPa(const YamlMap &m, const std::string &key, Real fallback, bool positive)
+{
+  if (!m.has(key))
+    return fallback;
+  const YamlValue v = m[key];
+  const Real x = v.real();
+  if (positive ? !(x > 0) : !(x >= 0))
+    v.fail(std::string("must be ") + (positive ? "> 0" : ">= 0") + " (GPa), got " + v.text());
+  if (x > 1e4)
+    v.fail("is in GPa (units of the paper's Table 1), got " + v.text() +
+           " GPa; did you give it in Pa?");
+  return x;
+}
+
+Real readAngle(const YamlMap &m, const std::string &key, Real fallback)
+{
+  return readReal(
+      m, key, fallback, [](Real x) { return x >= 0 && x < 90; }, "in [0, 90) (degrees)");
+}
+
+/// `auto` (a derived default, stored as -1) or a value in GPa.
+Real readAutoGPa(const YamlMap &m, const std::string &key)
+{
+  if (!m.has(key) || m[key].text() == "auto")
+    return -1;
+  return readGPa(m, key, -1, false);
+}
+
+SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool check_sets,
+                         std::map<std::string, int> &seen)
+{
+  const YamlMap m = item.map(kSurfaceKeys);
+  SurfaceSpec s;
+  s.name = m["name"].string();
+  claimName(seen, m["name"], s.name);
+  if (m.exactlyOne({"part", "face_set"}) == "part")
+  {
+    const YamlValue p = m["part"];
+    s.part = p.string();
+    if (s.part.back() == '*')
+    {
+      const std::string prefix = s.part.substr(0, s.part.size() - 1);
+      if (std::none_of(names.parts.begin(), names.parts.end(),
+                       [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
+        p.fail("no part name starts with '" + prefix + "'");
+    }
+    else
+      checkReference(p, s.part, "part", names.parts);
+  }
+  else
+  {
+    s.face_set = m["face_set"].string();
+    if (check_sets)
+      checkReference(m["face_set"], s.face_set, "face set", names.face_sets);
+  }
+  s.option = m.choice("option", {"slide_line", "sticky", "explicit", "implicit"}, s.option);
+  if (m.has("a"))
+  {
+    s.a = readReal(m, "a", s.a, isPositive, "> 0 (mm)");
+    if (s.a > 1000)
+      m["a"].fail("is in mm (units of the paper's Table 1), got " + m["a"].text() +
+                  " mm; did you give it in m?");
+  }
+  s.E0 = readGPa(m, "E0", s.E0, true);
+  s.G = readGPa(m, "G", s.G, true);
+  s.C = readGPa(m, "C", s.C, false);
+  s.phi0 = readAngle(m, "phi0", s.phi0);
+  s.phi1 = readAngle(m, "phi1", s.phi1);
+  s.psi0 = readAngle(m, "psi0", s.psi0);
+  s.usp0 = readReal(m, "usp0", s.usp0, isNonNegative, ">= 0 (apertures)");
+  s.sigma_cr = readGPa(m, "sigma_cr", s.sigma_cr, false);
+  s.Emax = readAutoGPa(m, "Emax");
+  if (s.Emax >= 0 && !(s.Emax > s.E0))
+    m["Emax"].fail("must exceed E0 = " + formatReal(s.E0) + " GPa, got " + m["Emax"].text());
+  s.sigma_t = readAutoGPa(m, "sigma_t");
+  if (m.has("C_safe"))
+  {
+    const YamlValue v = m["C_safe"];
+    if (v.text() == "off")
+      s.C_safe = std::numeric_limits<Real>::infinity();
+    else
+    {
+      s.C_safe = v.real();
+      if (!(s.C_safe > 0))
+        v.fail("must be > 0 or 'off', got " + v.text());
+    }
+  }
+  s.dt_form = m.choice("dt_form", {"mass_spring", "paper"}, s.dt_form);
+  s.dilation_update = m.choice("dilation_update", {"consistent", "explicit"}, s.dilation_update);
+  s.distribution = m.choice("distribution", {"penetration", "poc"}, s.distribution);
+  s.traction_history = m.boolean("traction_history", s.traction_history);
+  s.implicit_shear = m.boolean("implicit_shear", s.implicit_shear);
+  s.brittle_tension = m.boolean("brittle_tension", s.brittle_tension);
+  return s;
+}
+
+} // namespace
+
+void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
+{
+  if (!root.has("contact"))
+    return;
+  const YamlMap c =
+      root["contact"].map({"search_interval", "constraint_passes", "search_gap", "surfaces"});
+  ContactSpec &spec = deck.contact;
+  if (c.has("search_interval"))
+  {
+    const YamlValue v = c["search_interval"];
+    if (v.text() == "once")
+      spec.search_interval = 0;
+    else
+    {
+      if (!v.node().IsScalar() || v.text().find_first_not_of("0123456789+-") != std::string::npos)
+        v.fail("must be 'once' or an integer >= 1 (cycles), got " + v.text());
+      spec.search_interval = v.integer();
+      if (spec.search_interval < 1)
+        v.fail("must be 'once' or an integer >= 1 (cycles), got " + v.text());
+    }
+  }
+  if (c.has("constraint_passes"))
+  {
+    const long n = c["constraint_passes"].integer();
+    if (n < 1 || n > 1000)
+      c["constraint_passes"].fail("must be an integer in [1, 1000], got " +
+                                  c["constraint_passes"].text());
+    spec.constraint_passes = int(n);
+  }
+  spec.search_gap = readReal(c, "search_gap", spec.search_gap, isPositive, "> 0 (m)");
+  if (!c.has("surfaces"))
+    c.missing("surfaces");
+  const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(),
+                                       [](const PartSpec &p) { return p.mesh.type == "gmsh"; });
+  std::map<std::string, int> seen;
+  for (const YamlValue &item : c["surfaces"].list(1))
+    spec.surfaces.push_back(parseSurface(item, names, check_sets, seen));
+  if (deck.dimension == 1)
+    c.owner().fail("contact needs dimension 2 or 3 (this deck has dimension 1)");
+}
+
+} // namespace Impl
+} // namespace scpdyn
