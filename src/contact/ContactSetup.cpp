@@ -27,8 +27,8 @@ bool partMatches(const std::string &part_name, const std::string &pattern)
 
 std::array<Index, kMaxFaceNodes> sortedNodes(const HostFace &f)
 {
-  std::array<Index, kMaxFaceNodes> s = f.nodes;
-  std::sort(s.begin(), s.begin() + f.num_nodes);
+  std::array<Index, kMaxFaceNodes> s = f.nodes; // unused slots are -1 and sort first
+  std::sort(s.begin(), s.end());
   return s;
 }
 

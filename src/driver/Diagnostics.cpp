@@ -1,6 +1,8 @@
 // Energies, gauges: what the solver reports about its state.
 #include "driver/Solver.hpp"
 
+#include "contact/ContactSystem.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -155,6 +157,11 @@ EnergyReport Solver::energies() const
   for (int i = 0; i < 3; ++i)
     r.momentum[i] = _last_sums.momentum[i];
   r.external_work = _external_work;
+  if (_contact) // work done on the joints = stored + dissipated (closes the balance)
+  {
+    r.contact = _contact->energy();
+    r.contact_dissipation = _contact->dissipatedEnergy();
+  }
   // the leapfrog conserves 1/2 m v^n.v^{n+1} + IE(x^{n+1/2}) (verification.md T1)
   const Real total = _kinetic_mid + internal + hourglass + r.contact;
   const Real scale = std::max({_energy_scale, std::abs(_initial_energy) + std::abs(_external_work),

@@ -75,6 +75,7 @@ Solver::Solver(const Deck &deck) : _deck(deck)
   setupFields();
   setupSets();
   setupBoundaryConditions();
+  setupContact();
   setupGauges();
   setupInitialState();
 }

@@ -1,6 +1,7 @@
 // The 13-step cycle of the paper (scp-method.md 2.2), read top to bottom in Solver::cycle().
 #include "driver/Solver.hpp"
 
+#include "contact/ContactSystem.hpp"
 #include "driver/Outputs.hpp"
 
 #include <cmath>
@@ -28,12 +29,43 @@ void Solver::cycle()
   ++_cycle;
 }
 
-// Steps 3, 4, 7, 8 and 9 are filled in by the contact and domain-decomposition issues.
-void Solver::stepSortIntoBins() {}
+// Steps 4, 7 and 8 are filled in by the domain-decomposition issue.
 void Solver::stepExchangeFaceConnectivity() {}
 void Solver::stepExchangeSharedNodeForces() {}
 void Solver::stepExchangeGhostFaceData() {}
-void Solver::stepContactForces() {}
+
+void Solver::setupContact()
+{
+  if (_deck.contact.surfaces.empty())
+    return;
+  ContactMeshInput in;
+  in.deck = &_deck;
+  in.mesh = &_mesh;
+  in.external_faces = &_external_faces;
+  in.face_sets = &_face_sets;
+  in.host_to_device_element = &_host_to_device_element;
+  in.nodes = _nodes;
+  in.elems = _elems;
+  _contact = std::make_shared<ContactSystem>(in);
+}
+
+void Solver::stepSortIntoBins()
+{
+  if (!_contact)
+    return;
+  ScopedStep t(_timers, "03_sort_into_bins");
+  _contact->sortIntoBins(_nodes, _dt, _cycle);
+}
+
+void Solver::stepContactForces()
+{
+  if (!_contact)
+    return;
+  ScopedStep t(_timers, "09_contact_forces");
+  const ContactFailure f = _contact->computeForces(_nodes, _bc, _dt, _cycle, _time);
+  if (f.failed)
+    throw SimulationError(f.message);
+}
 
 void Solver::stepZeroForces()
 {
@@ -90,6 +122,8 @@ void Solver::stepUpdateNodes()
   _external_work += _last_sums.external_work;
   _kinetic_mid = _last_sums.kinetic_mid;
   _energy_scale = std::max(_energy_scale, _last_sums.kinetic);
+  if (_contact) // (19) for explicit contacts, from v^{n+1}; dt_el = the element Courant step
+    _dt_next = std::min(_dt_next, _contact->stableTimeStep(_nodes, _elems, _dt_next / _deck.courant));
   if (!std::isfinite(_last_sums.kinetic))
   {
     std::ostringstream os;

@@ -16,6 +16,7 @@ namespace scpdyn
 {
 
 class Outputs;
+class ContactSystem;
 
 /// \brief A run that cannot go on (inverted element, non-finite state); the message names
 /// the element and cycle. main() exits with status 3 after the outputs are flushed.
@@ -34,6 +35,7 @@ struct EnergyReport
   Real contact = 0;
   Real balance_error = 0; ///< (E - E0 - W_ext) / reference, on the leapfrog's conserved energy
   Real momentum[3] = {0, 0, 0};
+  Real contact_dissipation = 0; ///< part of `contact` dissipated (contact - stored)
 };
 
 /// \brief A gauge resolved to a node or element id and quantity codes.
@@ -74,6 +76,8 @@ public:
   EnergyReport energies() const;
   /// \brief Current gauge values, in the order of gauges().
   std::vector<Real> gaugeValues() const;
+  /// \brief The common-plane contact, or null when the deck has no contact surfaces.
+  const ContactSystem *contact() const { return _contact.get(); }
 
 private:
   void setupMesh();
@@ -82,6 +86,7 @@ private:
   void setupBoundaryConditions();
   void setupGauges();
   void setupInitialState();
+  void setupContact();
 
   // the cycle's steps (numbers as in the paper)
   void stepSortIntoBins();             // 3
@@ -125,6 +130,7 @@ private:
   Real _energy_scale = 0;    ///< largest |energy| seen, the balance error's reference
   NodeSums _last_sums;
   StepTimers _timers;
+  std::shared_ptr<ContactSystem> _contact; ///< shared_ptr: no complete type needed in ~Solver
 };
 
 } // namespace scpdyn

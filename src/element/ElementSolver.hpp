@@ -76,7 +76,7 @@ KOKKOS_INLINE_FUNCTION void midpointVelocityGradient(const Real Lh[3][3], Real h
 /// \brief One element step. x: half-step positions x^{n+1/2}; v: velocities v^n.
 /// The strain increment dt D(v^n) at x^{n+1/2} takes the element from n-1/2 to n+1/2.
 template <ElementType T, bool Axi>
-KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
+__attribute__((flatten)) KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
                                         const MaterialParams &mat, const ElementControls &ctl,
                                         ElementState &s, ElementResult &r)
 {
