@@ -59,7 +59,13 @@ namespace scpdyn_bench
 {
 using namespace scpdyn;
 
-constexpr int kBoxCells = 64; ///< the box is kBoxCells^3 hex8 elements
+/// \brief The box has boxCells()^3 hex8 elements: 64, or SCPDYN_BENCH_CELLS (e.g. 16 for a
+/// quick run under valgrind --tool=callgrind).
+inline int boxCells()
+{
+  const char *env = std::getenv("SCPDYN_BENCH_CELLS");
+  return env && std::atoi(env) > 0 ? std::atoi(env) : 64;
+}
 
 /// \brief Objects holding Views, released by main() before Kokkos::finalize.
 inline std::vector<std::shared_ptr<void>> &keepAlive()
@@ -92,16 +98,19 @@ inline std::string boxDeck(int n, const std::string &scatter)
          "  - {type: velocity, node_set: wall, component: x, value: 0.0}\n";
 }
 
-/// \brief One Solver per scatter mode, built once and advanced 20 cycles so that the wave
-/// (and with it the compressive bulk-viscosity branch) is in the box.
+/// \brief One Solver per scatter mode, built once and advanced 20 cycles (or
+/// SCPDYN_BENCH_WARMUP) so that the wave (and with it the compressive bulk-viscosity branch)
+/// is in the box.
 inline Solver &boxSolver(const std::string &scatter)
 {
   static std::map<std::string, Solver *> cache;
   Solver *&s = cache[scatter];
   if (!s)
   {
-    auto owned = std::make_shared<Solver>(parseDeckString(boxDeck(kBoxCells, scatter), "bench_box.yaml"));
-    for (int k = 0; k < 20; ++k)
+    auto owned = std::make_shared<Solver>(parseDeckString(boxDeck(boxCells(), scatter), "bench_box.yaml"));
+    const char *env = std::getenv("SCPDYN_BENCH_WARMUP");
+    const int warmup = env ? std::atoi(env) : 20;
+    for (int k = 0; k < warmup; ++k)
       owned->cycle();
     s = owned.get();
     keepAlive().push_back(owned);

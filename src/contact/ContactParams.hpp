@@ -44,6 +44,13 @@ enum class DistributionRule : int
   Poc = 1          ///< shape-function weights at the POC always
 };
 
+/// \brief Face velocities V1, V2 of (10), (12).
+enum class VelocityRule : int
+{
+  Weighted = 0, ///< nodal velocities weighted like the CP force (work-conjugate; default)
+  Average = 1   ///< plain average of the nodal velocities (the paper's wording, section 5)
+};
+
 /// \brief Dilation coupling on a slipping step (section 7, E4).
 enum class DilationUpdate : int
 {
@@ -81,6 +88,7 @@ struct JointParams
   DilationUpdate dilation_update = DilationUpdate::Consistent;
   DtContactForm dt_form = DtContactForm::MassSpring;
   DistributionRule distribution = DistributionRule::Penetration;
+  VelocityRule velocity = VelocityRule::Weighted;
   bool traction_history = true; ///< rescale stored forces with Ac (6.6)
   bool implicit_shear = true;   ///< (D13) in the implicit option (10.7)
   bool brittle_tension = false; ///< sigma_t (and C) -> 0 for a CP after it first opens (6.5)
@@ -139,6 +147,8 @@ struct CpState
   int open = 0;              ///< 1: joint open (no force until u > u_z)
   int failed = 0;            ///< sleepy option: 1 after the failure switch (irreversible)
   Real sigma_t_scale = 1;    ///< 0 after first opening with brittle_tension (6.5)
+  Real V_model[3] = {0, 0, 0}; ///< implicit option: end-of-step V1 - V2 its model predicted [m/s]
+  Real dt_model = 0;         ///< implicit option: the step of that prediction (0: none) [s]
 };
 
 /// \brief History of a new CP (section 12 and D12): u = u0 from (D7), umax = max(u0, 0); a gap

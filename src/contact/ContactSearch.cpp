@@ -54,6 +54,9 @@ KOKKOS_INLINE_FUNCTION bool shareNode(const ContactFaceData &F, Index f, Index g
   return false;
 }
 
+/// Rule 2 threshold on n_f.n_g: normals at least 120 degrees apart.
+constexpr Real kOpposingNormals = -0.5;
+
 /// Candidate rules of 3.2 for faces i < j.
 KOKKOS_INLINE_FUNCTION bool isCandidate(const ContactFaceData &F, const FaceGeometryData &G,
                                         const VectorView &x, const VectorView &v, Real half_dt,
@@ -69,7 +72,9 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const ContactFaceData &F, const FaceGeom
     side_i += dc * G.normal(i, d);
     side_j -= dc * G.normal(j, d);
   }
-  if (!(nn < 0))
+  // rule 2, with a margin: faces at right angles (block corners, brick T-junctions) flip the
+  // sign of n_f.n_g with round-off and would get a CP at 45 degrees
+  if (!(nn < kOpposingNormals))
     return false;
   const Real delta = 0.5 * ContactMath::min(G.diameter(i), G.diameter(j));
   if (!(side_i > -delta && side_j > -delta) || shareNode(F, i, j))

@@ -57,6 +57,7 @@ JointParams jointParamsOf(const SurfaceSpec &s, int bc_id)
       s.dilation_update == "explicit" ? DilationUpdate::Explicit : DilationUpdate::Consistent;
   p.dt_form = s.dt_form == "paper" ? DtContactForm::Paper : DtContactForm::MassSpring;
   p.distribution = s.distribution == "poc" ? DistributionRule::Poc : DistributionRule::Penetration;
+  p.velocity = s.velocity == "average" ? VelocityRule::Average : VelocityRule::Weighted;
   p.traction_history = s.traction_history;
   p.implicit_shear = s.implicit_shear;
   p.brittle_tension = s.brittle_tension;

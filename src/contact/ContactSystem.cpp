@@ -70,6 +70,8 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
     _has_constraints = _has_constraints || o == "sticky" || o == "slide_line";
     _has_joints = _has_joints || o == "explicit" || o == "implicit";
     _has_explicit = _has_explicit || o == "explicit";
+    _has_sticky = _has_sticky || o == "sticky";
+    _has_slide = _has_slide || o == "slide_line";
   }
   const size_t n = size_t(in.nodes.count);
   _vstar = VectorView("contact_vstar", n);

@@ -77,6 +77,8 @@ private:
   void computeVstar(const NodeFields &nodes, const BoundaryConditions &bc, Real dt);
   void jointForces(const NodeFields &nodes, Real dt);
   void constraintPasses(const NodeFields &nodes, Real dt);
+  int tieSolve(const NodeFields &nodes, Real dt);
+  void tieScatter(const NodeFields &nodes, Real dt, const VectorView &force);
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
 
   int _dim = 2;
@@ -92,11 +94,15 @@ private:
   FaceBins _bins;
   long _binned_cycle = -1;
   bool _has_joints = false, _has_constraints = false, _has_explicit = false;
+  bool _has_sticky = false, _has_slide = false;
+  VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
+  IndexView _tie_mode;   ///< per CP: which velocity constraint it imposes this cycle
 
   VectorView _vstar;     ///< v* of 10.6 (contact nodes; other entries unused)
   VectorView _dv;        ///< velocity increments of one constraint pass
   VectorView _fc;        ///< contact force of this cycle (contact nodes) [N]
   VectorView _impulse;   ///< last cycle's contact impulse fc dt (contact nodes) [N s]
+  DeviceView<CpState *> _state_before; ///< CP histories at the start of step 9 (restored on failure)
   Real _work = 0;        ///< contact energy [J]
   Real _stored = 0;
   Index _max_count = 0;

@@ -10,7 +10,7 @@ void zeroForces(const NodeFields &nodes, const Real gravity[3], bool gather)
   auto mass = nodes.mass;
   const Real g0 = gravity[0], g1 = gravity[1], g2 = gravity[2];
   Kokkos::parallel_for(
-      "scpdyn::node::zeroForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
+      "zeroForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n) {
         if (!gather)
           for (int i = 0; i < 3; ++i)
@@ -35,7 +35,7 @@ NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Rea
   const Real half_dt = 0.5 * dt;
   NodeSums sums;
   Kokkos::parallel_reduce(
-      "scpdyn::node::update", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
+      "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n, NodeSums &s) {
         const Real m = mass(n);
         for (int i = 0; i < dim; ++i)
@@ -74,7 +74,7 @@ NodeSums nodeSums(const NodeFields &nodes)
   auto mass = nodes.mass;
   NodeSums sums;
   Kokkos::parallel_reduce(
-      "scpdyn::node::sums", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
+      "nodeSums", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n, NodeSums &s) {
         for (int i = 0; i < 3; ++i)
         {

@@ -1,6 +1,8 @@
 #include "driver/Outputs.hpp"
 
 #include "driver/Solver.hpp"
+
+#include "contact/ContactSystem.hpp"
 #include "material/MaterialLibrary.hpp"
 
 #include <map>
@@ -44,12 +46,14 @@ void Outputs::begin()
         desc.connectivity.push_back(conn(e, a));
     }
   _fields = std::make_unique<FieldWriter>(_dir, desc);
+  if (_solver.contact())
+    _contacts = std::make_unique<PointSetWriter>(_dir, "contacts");
 
   _history = std::make_unique<CsvWriter>(
       _dir + "/history.csv",
       std::vector<std::string>{"time", "cycle", "dt", "kinetic", "internal", "hourglass",
                                "external_work", "contact", "energy_balance_error", "momentum_x",
-                               "momentum_y", "momentum_z"});
+                               "momentum_y", "momentum_z", "contact_dissipation"});
   std::vector<std::string> columns{"time"};
   for (const auto &g : _solver.gauges())
     columns.push_back(g.column);
@@ -120,6 +124,23 @@ void Outputs::writeFrame()
   for (auto &kv : named)
     f.cell_scalars.push_back({kv.first, std::move(kv.second)});
   _fields->write(f);
+  writeContactFrame();
+}
+
+void Outputs::writeContactFrame()
+{
+  if (!_contacts)
+    return;
+  const ContactPointsHost c = _solver.contact()->points();
+  PointFrame f;
+  f.time = _solver.time();
+  f.cycle = _solver.cycles();
+  f.points = c.poc;
+  f.scalars = {{"area", c.area},           {"normal_force", c.normal_force},
+               {"shear_force", c.shear_force}, {"closure", c.closure},
+               {"slip", c.slip},           {"state", c.state},
+               {"face1_key", c.key1},      {"face2_key", c.key2}};
+  _contacts->write(f);
 }
 
 void Outputs::writeRows()
@@ -132,7 +153,7 @@ void Outputs::writeRows()
   _max_balance_error = std::max(_max_balance_error, std::abs(r.balance_error));
   _history->row({_solver.time(), double(_solver.cycles()), _solver.dt(), r.kinetic, r.internal,
                  r.hourglass, r.external_work, r.contact, r.balance_error, r.momentum[0],
-                 r.momentum[1], r.momentum[2]});
+                 r.momentum[1], r.momentum[2], r.contact_dissipation});
   std::vector<double> row{_solver.time()};
   for (Real v : _solver.gaugeValues())
     row.push_back(v);
@@ -175,6 +196,8 @@ void Outputs::finish(const std::string &error)
   _history->close();
   _gauges->close();
   _fields->close();
+  if (_contacts)
+    _contacts->close();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count();
   JsonObject timers;
   double cycle_time = 0;
@@ -199,6 +222,7 @@ void Outputs::finish(const std::string &error)
       .add("elements", long(_solver.elements().count))
       .add("energy_balance_error", std::abs(_last_balance_error))
       .add("energy_balance_error_max", _max_balance_error)
+      .add("common_planes_max", long(_solver.contact() ? _solver.contact()->maxCount() : 0))
       .add("element_cycles_per_second", cycle_time > 0 ? element_cycles / cycle_time : 0.0)
       .add("ns_per_element_cycle", element_cycles > 0 ? 1e9 * cycle_time / element_cycles : 0.0);
   writeJson(_dir + "/summary.json", s);

@@ -29,10 +29,12 @@ public:
 private:
   void writeFrame();
   void writeRows();
+  void writeContactFrame();
 
   const Solver &_solver;
   std::string _dir;
   std::unique_ptr<FieldWriter> _fields;
+  std::unique_ptr<PointSetWriter> _contacts; ///< contacts.xmf/h5, with contact surfaces only
   std::unique_ptr<CsvWriter> _history, _gauges;
   double _next_field = 0, _next_history = 0;
   long _last_frame_cycle = -1, _last_row_cycle = -1;

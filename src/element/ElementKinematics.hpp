@@ -97,14 +97,45 @@ KOKKOS_INLINE_FUNCTION int hexFaceNode(int face, int k)
   return faces[face][k];
 }
 
-/// \brief Hex8: exact trilinear volume and its gradient.
+/// \brief One face's share of hex8Gradients(): adds dT/dx to B (unscaled), S.(PxQ) to vol24
+/// and keeps the largest squared face area |PxQ|^2 / 4 in amax2. Force-inlined with literal
+/// node numbers, so no index table is built or read at run time.
+KOKKOS_FORCEINLINE_FUNCTION void hex8FaceTerm(const Real x[8][3], const Real c[3], int ia, int ib,
+                                              int ic, int id, Real B[8][3], Real &vol24,
+                                              Real &amax2)
+{
+  Real S[3], P[3], Q[3], PxQ[3], QxS[3], SxP[3];
+  for (int i = 0; i < 3; ++i)
+  {
+    S[i] = x[ia][i] + x[ib][i] + x[ic][i] + x[id][i] - 4 * c[i];
+    P[i] = x[ic][i] - x[ia][i];
+    Q[i] = x[id][i] - x[ib][i];
+  }
+  cross3(P, Q, PxQ);
+  cross3(Q, S, QxS);
+  cross3(S, P, SxP);
+  vol24 += S[0] * PxQ[0] + S[1] * PxQ[1] + S[2] * PxQ[2];
+  for (int i = 0; i < 3; ++i)
+  {
+    B[ia][i] += PxQ[i] - QxS[i];
+    B[ic][i] += PxQ[i] + QxS[i];
+    B[ib][i] += PxQ[i] - SxP[i];
+    B[id][i] += PxQ[i] + SxP[i];
+  }
+  const Real a2 = 0.25 * (PxQ[0] * PxQ[0] + PxQ[1] * PxQ[1] + PxQ[2] * PxQ[2]);
+  amax2 = a2 > amax2 ? a2 : amax2;
+}
+
+/// \brief Hex8: exact trilinear volume and its gradient; also the largest squared face area
+/// [m^4] (the characteristic length is V / sqrt(max_face_area2)), which costs nothing here.
 ///
 /// By the divergence theorem V = 1/3 sum_faces int x.n dA, and for a bilinear face (a,b,c,d)
 /// int x.n dA = 1/8 S.(P x Q) exactly (warped or not), with S = a+b+c+d, P = c-a, Q = d-b
 /// (derived in docs/theory.md). Differentiating T = S.(PxQ) = P.(QxS) = Q.(SxP):
 /// dT/da = PxQ - QxS, dT/dc = PxQ + QxS, dT/db = PxQ - SxP, dT/dd = PxQ + SxP.
-/// Coordinates are taken relative to the centroid to keep round-off small.
-KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3])
+/// Coordinates are taken relative to the centroid to keep round-off small. The faces are
+/// those of hexFaceNode(), in its order.
+KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3], Real &max_face_area2)
 {
   Real c[3] = {0, 0, 0};
   for (int a = 0; a < 8; ++a)
@@ -113,36 +144,27 @@ KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3])
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
       B[a][i] = 0;
-  Real vol24 = 0;
-  for (int f = 0; f < 6; ++f)
-  {
-    const int ia = hexFaceNode(f, 0), ib = hexFaceNode(f, 1), ic = hexFaceNode(f, 2),
-              id = hexFaceNode(f, 3);
-    Real S[3], P[3], Q[3], PxQ[3], QxS[3], SxP[3];
-    for (int i = 0; i < 3; ++i)
-    {
-      S[i] = x[ia][i] + x[ib][i] + x[ic][i] + x[id][i] - 4 * c[i];
-      P[i] = x[ic][i] - x[ia][i];
-      Q[i] = x[id][i] - x[ib][i];
-    }
-    cross3(P, Q, PxQ);
-    cross3(Q, S, QxS);
-    cross3(S, P, SxP);
-    vol24 += S[0] * PxQ[0] + S[1] * PxQ[1] + S[2] * PxQ[2];
-    for (int i = 0; i < 3; ++i)
-    {
-      B[ia][i] += PxQ[i] - QxS[i];
-      B[ic][i] += PxQ[i] + QxS[i];
-      B[ib][i] += PxQ[i] - SxP[i];
-      B[id][i] += PxQ[i] + SxP[i];
-    }
-  }
+  Real vol24 = 0, amax2 = 0;
+  hex8FaceTerm(x, c, 0, 3, 2, 1, B, vol24, amax2);
+  hex8FaceTerm(x, c, 4, 5, 6, 7, B, vol24, amax2);
+  hex8FaceTerm(x, c, 0, 1, 5, 4, B, vol24, amax2);
+  hex8FaceTerm(x, c, 1, 2, 6, 5, B, vol24, amax2);
+  hex8FaceTerm(x, c, 2, 3, 7, 6, B, vol24, amax2);
+  hex8FaceTerm(x, c, 3, 0, 4, 7, B, vol24, amax2);
+  max_face_area2 = amax2;
   const Real V = vol24 / 24;
   const Real s = 1 / vol24; // (1/24 dT) / V
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
       B[a][i] *= s;
   return V;
+}
+
+/// \brief Hex8: exact trilinear volume and its gradient (see above).
+KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3])
+{
+  Real amax2;
+  return hex8Gradients(x, B, amax2);
 }
 
 /// \brief Dispatch on the element type: B and measure (length, area or volume).
@@ -217,6 +239,26 @@ KOKKOS_INLINE_FUNCTION Real characteristicLength(const Real x[][3], Real measure
       amax = a2 > amax ? a2 : amax;
     }
     return 3 * measure / kmath::sqrt(amax);
+  }
+}
+
+/// \brief elementGradients() and characteristicLength() together: the hex8 reuses its face
+/// normals (same arithmetic, so the same bits as the two calls). Returns the measure.
+template <ElementType T>
+KOKKOS_INLINE_FUNCTION Real elementGradientsAndLength(const Real x[][3], Real B[][3], Real &length)
+{
+  if constexpr (T == ElementType::Hex8)
+  {
+    Real amax2;
+    const Real V = hex8Gradients(x, B, amax2);
+    length = V / kmath::sqrt(amax2);
+    return V;
+  }
+  else
+  {
+    const Real measure = elementGradients<T>(x, B);
+    length = characteristicLength<T>(x, measure);
+    return measure;
   }
 }
 

@@ -76,14 +76,15 @@ KOKKOS_INLINE_FUNCTION void midpointVelocityGradient(const Real Lh[3][3], Real h
 /// \brief One element step. x: half-step positions x^{n+1/2}; v: velocities v^n.
 /// The strain increment dt D(v^n) at x^{n+1/2} takes the element from n-1/2 to n+1/2.
 template <ElementType T, bool Axi>
-__attribute__((flatten)) KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
+KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
                                         const MaterialParams &mat, const ElementControls &ctl,
                                         ElementState &s, ElementResult &r)
 {
   constexpr int N = ElementTraits<T>::nodes;
   constexpr int D = ElementTraits<T>::dim;
   Real B[N][3];
-  const Real measure = elementGradients<T>(x, B);
+  Real length;
+  const Real measure = elementGradientsAndLength<T>(x, B, length);
   Real V = measure;
   if constexpr (Axi)
     V = quad4RadialVolume(x);
@@ -120,7 +121,7 @@ __attribute__((flatten)) KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][
   st.rho_old = s.mass / s.volume;
   st.rho_new = s.mass / V;
   st.time = ctl.half_time;
-  st.length = characteristicLength<T>(x, measure);
+  st.length = length;
 
   const Real trD = st.D[0] + st.D[1] + st.D[2];
   const Real lq = D == 1 ? measure : D == 2 ? kmath::sqrt(measure) : kmath::cbrt(measure);

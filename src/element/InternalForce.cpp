@@ -7,16 +7,30 @@ namespace scpdyn
 namespace
 {
 
+/// How element forces reach the nodes: atomic adds; plain adds (one thread: the same sums in
+/// the same order, without the ~7 ns lock of each of the 24 atomic adds of a hex); or
+/// per-corner stores for gatherCornerForces().
+enum class Scatter
+{
+  Atomic,
+  Plain,
+  Corners
+};
+
+// Kernel labels stay within std::string's 15-character small-string buffer: Kokkos turns
+// each label into a std::string per launch, and a longer one is a heap allocation per cycle.
+
 template <ElementType T, bool Axi>
-Real launchGroup(const ElementGroup &g, const ElementControls &ctl, const NodeFields &nodes,
-                 const ElementFields &el, const DeviceView<MaterialParams *> &materials,
-                 const NodeCorners &corners)
+Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scatter,
+                 const NodeFields &nodes, const ElementFields &el,
+                 const DeviceView<MaterialParams *> &materials, const NodeCorners &corners)
 {
   constexpr int N = ElementTraits<T>::nodes;
   auto conn = el.conn;
   auto x_n = nodes.x;
   auto v_n = nodes.v;
-  AtomicVectorView f_int = nodes.f_int;
+  AtomicVectorView f_atomic = nodes.f_int;
+  VectorView f_plain = nodes.f_int;
   auto corner_force = corners.corner_force;
   auto mat_id = el.material;
   auto e_mass = el.mass, e_volume = el.volume, e_energy = el.energy, e_eps = el.plastic_strain;
@@ -28,7 +42,7 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, const NodeFi
 
   Real dt_min = 0;
   Kokkos::parallel_reduce(
-      "scpdyn::element::internalForce", Kokkos::RangePolicy<ExecSpace>(g.begin, g.end),
+      "elementForces", Kokkos::RangePolicy<ExecSpace>(g.begin, g.end),
       KOKKOS_LAMBDA(const Index e, Real &local_min) {
         Real x[N][3], v[N][3];
         for (int a = 0; a < N; ++a)
@@ -74,7 +88,7 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, const NodeFi
           e_hist(e, k) = s.history[k];
         for (int k = 0; k < kHourglassSize; ++k)
           e_hgq(e, k) = s.hourglass[k];
-        if (ctl.gather)
+        if (scatter == Scatter::Corners)
         {
           for (int a = 0; a < N; ++a)
             for (int i = 0; i < 3; ++i)
@@ -86,7 +100,10 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, const NodeFi
           {
             const Index n = conn(e, a);
             for (int i = 0; i < ElementTraits<T>::dim; ++i)
-              f_int(n, i) += r.force[a][i];
+              if (scatter == Scatter::Atomic)
+                f_atomic(n, i) += r.force[a][i];
+              else
+                f_plain(n, i) += r.force[a][i];
           }
         }
         local_min = r.stable_dt < local_min ? r.stable_dt : local_min;
@@ -96,20 +113,20 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, const NodeFi
 }
 
 template <bool Axi>
-Real launchAny(const ElementGroup &g, const ElementControls &ctl, const NodeFields &nodes,
+Real launchAny(const ElementGroup &g, const ElementControls &ctl, Scatter s, const NodeFields &nodes,
                const ElementFields &el, const DeviceView<MaterialParams *> &materials,
                const NodeCorners &corners)
 {
   switch (g.type)
   {
   case ElementType::Line2:
-    return launchGroup<ElementType::Line2, false>(g, ctl, nodes, el, materials, corners);
+    return launchGroup<ElementType::Line2, false>(g, ctl, s, nodes, el, materials, corners);
   case ElementType::Quad4:
-    return launchGroup<ElementType::Quad4, Axi>(g, ctl, nodes, el, materials, corners);
+    return launchGroup<ElementType::Quad4, Axi>(g, ctl, s, nodes, el, materials, corners);
   case ElementType::Hex8:
-    return launchGroup<ElementType::Hex8, false>(g, ctl, nodes, el, materials, corners);
+    return launchGroup<ElementType::Hex8, false>(g, ctl, s, nodes, el, materials, corners);
   case ElementType::Tet4:
-    return launchGroup<ElementType::Tet4, false>(g, ctl, nodes, el, materials, corners);
+    return launchGroup<ElementType::Tet4, false>(g, ctl, s, nodes, el, materials, corners);
   }
   return 0;
 }
@@ -125,7 +142,7 @@ Real initialGroup(const ElementGroup &g, const NodeFields &nodes, const ElementF
   auto e_volume = el.volume, e_c = el.sound_speed;
   Real dt_min = 0;
   Kokkos::parallel_reduce(
-      "scpdyn::element::initialTimeStep", Kokkos::RangePolicy<ExecSpace>(g.begin, g.end),
+      "initialDt", Kokkos::RangePolicy<ExecSpace>(g.begin, g.end),
       KOKKOS_LAMBDA(const Index e, Real &local_min) {
         Real x[N][3], B[N][3];
         for (int a = 0; a < N; ++a)
@@ -153,12 +170,15 @@ Real computeElementForces(const std::vector<ElementGroup> &groups, const Element
                           const NodeFields &nodes, const ElementFields &elems,
                           const DeviceView<MaterialParams *> &materials, const NodeCorners &corners)
 {
+  const Scatter s = ctl.gather                       ? Scatter::Corners
+                    : ExecSpace().concurrency() == 1 ? Scatter::Plain
+                                                     : Scatter::Atomic;
   Real dt_min = Kokkos::reduction_identity<Real>::min();
   for (const auto &g : groups)
   {
     const Real d = ctl.geometry == Geometry2D::Axisymmetric
-                       ? launchAny<true>(g, ctl, nodes, elems, materials, corners)
-                       : launchAny<false>(g, ctl, nodes, elems, materials, corners);
+                       ? launchAny<true>(g, ctl, s, nodes, elems, materials, corners)
+                       : launchAny<false>(g, ctl, s, nodes, elems, materials, corners);
     dt_min = d < dt_min ? d : dt_min;
   }
   return dt_min;
@@ -171,7 +191,7 @@ void gatherCornerForces(const NodeFields &nodes, const NodeCorners &corners)
   auto cf = corners.corner_force;
   auto f = nodes.f_int;
   Kokkos::parallel_for(
-      "scpdyn::element::gatherCornerForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
+      "gatherCorners", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n) {
         Real s[3] = {0, 0, 0};
         for (Index k = offsets(n); k < offsets(n + 1); ++k)

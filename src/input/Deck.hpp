@@ -120,6 +120,7 @@ struct SurfaceSpec
   std::string dt_form = "mass_spring";         ///< mass_spring | paper
   std::string dilation_update = "consistent";  ///< consistent | explicit
   std::string distribution = "penetration";    ///< penetration | poc
+  std::string velocity = "weighted";           ///< weighted | average (face velocities)
   bool traction_history = true;
   bool implicit_shear = true;
   bool brittle_tension = false;
@@ -130,7 +131,7 @@ struct ContactSpec
 {
   std::vector<SurfaceSpec> surfaces;
   long search_interval = 1;  ///< cycles between CP searches; 0 = once, at the first cycle
-  int constraint_passes = 5; ///< correction passes of the sticky and slide-line CPs (spec 10.8)
+  int constraint_passes = 30; ///< iterations of the sticky and slide-line solvers (spec 10.8)
   Real search_gap = -1;      ///< largest gap at which a CP is created [m]; < 0: largest face size
 };
 

@@ -19,7 +19,7 @@ const std::vector<std::string> kSurfaceKeys = {
     "name",     "part",  "face_set", "option",  "a",       "E0",
     "G",        "C",     "phi0",     "phi1",    "usp0",    "psi0",
     "sigma_cr", "Emax",  "sigma_t",  "C_safe",  "dt_form", "dilation_update",
-    "distribution", "traction_history", "implicit_shear", "brittle_tension"};
+    "distribution", "velocity", "traction_history", "implicit_shear", "brittle_tension"};
 
 /// A Table 1 stress or modulus in GPa; values that only make sense in Pa get a unit hint.
 Real readGPa(const YamlMap &m, const std::string &key, Real fallback, bool positive)
@@ -112,6 +112,7 @@ SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool che
   s.dt_form = m.choice("dt_form", {"mass_spring", "paper"}, s.dt_form);
   s.dilation_update = m.choice("dilation_update", {"consistent", "explicit"}, s.dilation_update);
   s.distribution = m.choice("distribution", {"penetration", "poc"}, s.distribution);
+  s.velocity = m.choice("velocity", {"weighted", "average"}, s.velocity);
   s.traction_history = m.boolean("traction_history", s.traction_history);
   s.implicit_shear = m.boolean("implicit_shear", s.implicit_shear);
   s.brittle_tension = m.boolean("brittle_tension", s.brittle_tension);

@@ -192,6 +192,7 @@ void writeContact(YAML::Emitter &out, const ContactSpec &c)
     out << YAML::Key << "dt_form" << YAML::Value << s.dt_form;
     out << YAML::Key << "dilation_update" << YAML::Value << s.dilation_update;
     out << YAML::Key << "distribution" << YAML::Value << s.distribution;
+    out << YAML::Key << "velocity" << YAML::Value << s.velocity;
     out << YAML::Key << "traction_history" << YAML::Value << s.traction_history;
     out << YAML::Key << "implicit_shear" << YAML::Value << s.implicit_shear;
     out << YAML::Key << "brittle_tension" << YAML::Value << s.brittle_tension;

@@ -3,6 +3,7 @@
 #include "io/FieldWriter.hpp"
 
 #include "core/Types.hpp"
+#include "io/Hdf5Util.hpp"
 #include "io/TextOutput.hpp"
 
 #include <hdf5.h>
@@ -17,111 +18,12 @@ namespace scpdyn
 {
 namespace
 {
+using namespace h5detail;
+
 static_assert(sizeof(hid_t) == sizeof(std::int64_t), "FieldWriter stores hid_t as int64");
 
 constexpr const char *kH5Name = "fields.h5";
 constexpr const char *kXmfName = "fields.xmf";
-
-/// File-access list of the serial run: POSIX sec2 driver. A collective version returns an
-/// H5Pset_fapl_mpio list here instead; nothing else in the open path changes.
-/// File locking is off: with it (the 1.10.7+ default) ParaView and h5py cannot open the file
-/// of a running simulation at all. Readers are safe between frames because every frame is
-/// flushed before fields.xmf names it.
-hid_t makeFileAccessList()
-{
-  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (fapl < 0 || H5Pset_fapl_sec2(fapl) < 0)
-    throw std::runtime_error("FieldWriter: cannot create an HDF5 file-access property list");
-#if (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7) || H5_VERSION_GE(1, 12, 1)
-  H5Pset_file_locking(fapl, false, true);
-#endif
-  return fapl;
-}
-
-/// The one place that creates the field file, for whatever driver `fapl` selects.
-hid_t createFieldFile(const std::string &path, hid_t fapl)
-{
-  hid_t file = -1;
-  // HDF5 would print its own error stack; the exception below says all the user needs.
-  H5E_BEGIN_TRY
-  {
-    file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  }
-  H5E_END_TRY;
-  if (file < 0)
-    throw std::runtime_error("FieldWriter: cannot create HDF5 file '" + path + "'");
-  return file;
-}
-
-/// Closes an HDF5 object on scope exit, so an exception in the middle leaks no handle.
-class Handle
-{
-public:
-  Handle(hid_t id, herr_t (*closer)(hid_t)) : _id(id), _closer(closer) {}
-  ~Handle()
-  {
-    if (_id >= 0)
-      _closer(_id);
-  }
-  Handle(const Handle &) = delete;
-  Handle &operator=(const Handle &) = delete;
-  operator hid_t() const { return _id; }
-
-private:
-  hid_t _id;
-  herr_t (*_closer)(hid_t);
-};
-
-void check(herr_t status, const std::string &what, const std::string &path)
-{
-  if (status < 0)
-    throw std::runtime_error("FieldWriter: HDF5 failed to " + what + " in '" + path + "'");
-}
-
-hid_t createGroup(hid_t loc, const std::string &name, const std::string &path)
-{
-  const hid_t g = H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  if (g < 0)
-    throw std::runtime_error("FieldWriter: cannot create group '" + name + "' in '" + path + "'");
-  return g;
-}
-
-hid_t openGroup(hid_t loc, const std::string &name, const std::string &path)
-{
-  const hid_t g = H5Gopen2(loc, name.c_str(), H5P_DEFAULT);
-  if (g < 0)
-    throw std::runtime_error("FieldWriter: cannot open group '" + name + "' in '" + path + "'");
-  return g;
-}
-
-/// Every dataset goes through here, so switching to a collective transfer is one `dxpl`.
-template <class T>
-void writeDataset(hid_t loc, const std::string &name, const std::vector<hsize_t> &dims,
-                  const T *data, hid_t dxpl, const std::string &path)
-{
-  const bool is_real = std::is_same<T, double>::value;
-  const hid_t mem_type = is_real ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
-  const hid_t file_type = is_real ? H5T_IEEE_F64LE : H5T_STD_I32LE;
-  Handle space(H5Screate_simple(int(dims.size()), dims.data(), nullptr), H5Sclose);
-  Handle dset(space < 0 ? -1
-                        : H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT,
-                                     H5P_DEFAULT),
-              H5Dclose);
-  const herr_t status = dset < 0 ? -1 : H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, dxpl, data);
-  check(status, "write dataset '" + name + "'", path);
-}
-
-template <class T>
-void writeScalarAttribute(hid_t loc, const char *name, T value, const std::string &path)
-{
-  const bool is_real = std::is_same<T, double>::value;
-  const hid_t mem_type = is_real ? H5T_NATIVE_DOUBLE : H5T_NATIVE_LONG;
-  const hid_t file_type = is_real ? H5T_IEEE_F64LE : H5T_STD_I64LE;
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
-  Handle attr(H5Acreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  const herr_t status = attr < 0 ? -1 : H5Awrite(attr, mem_type, &value);
-  check(status, std::string("write attribute '") + name + "'", path);
-}
 
 /// XDMF mixed-topology codes (XdmfTopologyType.cpp): Polyline 0x2, Quad 0x5, Tet 0x6, Hex 0x9.
 int xdmfMixedCode(int type)
@@ -136,23 +38,6 @@ const char *xdmfTopologyName(int type)
   return names[type];
 }
 
-std::string xmlEscape(const std::string &s)
-{
-  std::string out;
-  for (char c : s)
-  {
-    switch (c)
-    {
-    case '&': out += "&amp;"; break;
-    case '<': out += "&lt;"; break;
-    case '>': out += "&gt;"; break;
-    case '"': out += "&quot;"; break;
-    case '\'': out += "&apos;"; break;
-    default: out += c;
-    }
-  }
-  return out;
-}
 
 std::string fieldError(const std::string &what)
 {

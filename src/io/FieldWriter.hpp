@@ -102,4 +102,51 @@ private:
   std::vector<FrameInfo> _frames;
 };
 
+/// \brief One output time of a point set (e.g. the contact points, one per common plane). The
+/// number of points may change from frame to frame.
+struct PointFrame
+{
+  double time = 0.0; ///< s
+  long cycle = 0;
+  std::vector<double> points;          ///< n_points*3 (m)
+  std::vector<NamedField> scalars;     ///< n_points each
+};
+
+/// \brief Appends point frames to `dir/<name>.h5` and keeps `dir/<name>.xmf` (an XDMF temporal
+/// collection of Polyvertex grids) valid after each one; ParaView and meshio open it. A frame
+/// without points is written as one placeholder point at the origin whose scalars are all
+/// `empty_value`, because XDMF readers reject empty grids.
+/// Layout: /frames/<k> with attributes `time`, `cycle`, `points` (n, 3) and `point_data/<name>`.
+class PointSetWriter
+{
+public:
+  PointSetWriter(const std::string &dir, const std::string &name, double empty_value = -1.0);
+  ~PointSetWriter();
+  PointSetWriter(const PointSetWriter &) = delete;
+  PointSetWriter &operator=(const PointSetWriter &) = delete;
+
+  /// \brief Appends one frame, flushes, rewrites the XDMF sidecar. Throws
+  /// std::invalid_argument on inconsistent sizes or names, std::runtime_error on I/O errors.
+  void write(const PointFrame &frame);
+  void close();
+  int framesWritten() const { return int(_frames.size()); }
+  const std::string &xmfPath() const { return _xmf_path; }
+
+private:
+  struct FrameInfo
+  {
+    double time;
+    long cycle;
+    std::size_t count;
+    std::vector<std::string> names;
+  };
+  void writeXdmf() const;
+
+  std::string _h5_name, _h5_path, _xmf_path;
+  double _empty_value;
+  std::int64_t _file = -1;
+  std::int64_t _dxpl = -1;
+  std::vector<FrameInfo> _frames;
+};
+
 } // namespace scpdyn

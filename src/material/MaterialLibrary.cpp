@@ -59,7 +59,7 @@ const std::vector<KeyRule> &modelKeys(const std::string &model)
       {"density", true, 0},        {"D", false, 0},           {"pcj", false, 0},
       {"ignition_x", false, 0},    {"ignition_y", false, 0},  {"ignition_z", false, 0},
       {"ignition_axis", false, -1}, {"initiation_time", false, 0},
-      {"burn_width", false, 1.5},  {"beta_burn", false, 0}};
+      {"burn_width", false, 1.5},  {"beta_burn", false, 1}};
   static const std::vector<KeyRule> none;
   if (model == "elastic")
     return elastic;
@@ -271,7 +271,7 @@ JwlCjState validateHighExplosive(const MaterialSpec &spec, const MaterialParams 
   if (!(axis == -1 || axis == 0 || axis == 1 || axis == 2))
     fail(spec, "ignition_axis", "must be -1 (point), 0, 1 or 2 (line along x, y or z)");
   requirePositive(spec, "burn_width");
-  const double beta = get(spec, "beta_burn", 0);
+  const double beta = get(spec, "beta_burn", 1);
   if (!(beta == 0 || beta == 1))
     fail(spec, "beta_burn", "must be 0 or 1");
   return cj;

@@ -130,6 +130,7 @@ TEST(Jwl, LightingTimeAndBurnRamp)
   const Real c2[3] = {4.0, 6.0, 12.0}; // 13 m from the point ...
   EXPECT_LT(relErr(lightingTime(point, c2), 1e-6 + 13.0 / 6930), 1e-15);
   s.values["ignition_axis"] = 2;
+  s.values["beta_burn"] = 0; // programmed burn alone (the default adds beta burn)
   const MaterialParams line = makeMaterialParams(s);
   EXPECT_LT(relErr(lightingTime(line, c2), 1e-6 + 5.0 / 6930), 1e-15); // ... 5 m from the z-line
 

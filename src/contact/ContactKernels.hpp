@@ -1,0 +1,88 @@
+#pragma once
+/// \file ContactKernels.hpp
+/// \brief Internal to the contact room: small device functions shared by the force kernels
+/// (ContactForces.cpp) and the constraint solvers (ContactConstraints.cpp).
+#include "contact/ContactData.hpp"
+
+namespace scpdyn
+{
+namespace ContactKernels
+{
+
+KOKKOS_INLINE_FUNCTION void faceVelocity(const ContactFaceData &F, Index f, const VectorView &v,
+                                         Real V[3])
+{
+  const int nn = F.num_nodes(f);
+  V[0] = V[1] = V[2] = 0;
+  for (int a = 0; a < nn; ++a)
+    for (int d = 0; d < 3; ++d)
+      V[d] += v(F.nodes(f, a), d);
+  for (int d = 0; d < 3; ++d)
+    V[d] /= nn;
+}
+
+KOKKOS_INLINE_FUNCTION bool isConstraint(ContactOption o)
+{
+  return o == ContactOption::SlideLine || o == ContactOption::Sticky ||
+         o == ContactOption::Sleepy;
+}
+
+/// Velocity of face `side` (0: face 1, 1: face 2) of CP p: the nodal velocities weighted like
+/// the CP force (17)-(18), so the power of the CP force is exactly -F.(V1 - V2).
+KOKKOS_INLINE_FUNCTION void weightedVelocity(const ContactFaceData &F, const CommonPlaneData &cp,
+                                             Index p, int side, const VectorView &v, Real V[3])
+{
+  const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
+  V[0] = V[1] = V[2] = 0;
+  for (int a = 0; a < F.num_nodes(f); ++a)
+  {
+    const Real w = side == 0 ? cp.w1(p, a) : cp.w2(p, a);
+    for (int d = 0; d < 3; ++d)
+      V[d] += w * v(F.nodes(f, a), d);
+  }
+}
+
+/// V1, V2 of CP p by the rule of its parameters.
+KOKKOS_INLINE_FUNCTION void cpVelocities(const ContactFaceData &F, const CommonPlaneData &cp,
+                                         Index p, VelocityRule rule, const VectorView &v,
+                                         Real V1[3], Real V2[3])
+{
+  if (rule == VelocityRule::Weighted)
+  {
+    weightedVelocity(F, cp, p, 0, v, V1);
+    weightedVelocity(F, cp, p, 1, v, V2);
+  }
+  else
+  {
+    faceVelocity(F, cp.face1(p), v, V1);
+    faceVelocity(F, cp.face2(p), v, V2);
+  }
+}
+
+/// (17)-(18): -w1 F on the nodes of face 1, +w2 F on face 2; with `dv`, also the velocity
+/// change dt F w / M of every node component that is not prescribed.
+KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonPlaneData &cp,
+                                         Index p, const Real Fv[3], const VectorView &fc,
+                                         const VectorView &dv, const RealView &mass,
+                                         const DeviceView<int * [3]> &bc, Real dt, int dim)
+{
+  for (int side = 0; side < 2; ++side)
+  {
+    const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
+    const Real sign = side == 0 ? -1.0 : 1.0;
+    for (int a = 0; a < F.num_nodes(f); ++a)
+    {
+      const Index k = F.nodes(f, a);
+      const Real w = sign * (side == 0 ? cp.w1(p, a) : cp.w2(p, a));
+      for (int d = 0; d < dim; ++d)
+      {
+        Kokkos::atomic_add(&fc(k, d), w * Fv[d]);
+        if (dv.extent(0) > 0 && bc(k, d) < 0)
+          Kokkos::atomic_add(&dv(k, d), w * Fv[d] * dt / mass(k));
+      }
+    }
+  }
+}
+
+} // namespace ContactKernels
+} // namespace scpdyn

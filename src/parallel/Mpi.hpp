@@ -1,0 +1,154 @@
+#pragma once
+/// \file Mpi.hpp
+/// \brief Small MPI helpers: rank and size, reductions whose result has the same bits on every
+/// rank, and the RAII session that owns MPI_Init/MPI_Finalize.
+///
+/// Sharing MPI_COMM_WORLD between main programs and tests: exactly one place initialises MPI
+/// (the scpdyn binary's main, or tests/main.cpp), before Kokkos::initialize, and finalises it
+/// after Kokkos::finalize. `MpiSession` does this and is a no-op when MPI is already
+/// initialised, so library code and tests never call MPI_Init themselves; they take an
+/// `MPI_Comm` argument that defaults to MPI_COMM_WORLD.
+#include "core/Types.hpp"
+
+#include <mpi.h>
+
+#include <array>
+#include <vector>
+
+namespace scpdyn
+{
+
+/// \brief Initialises MPI on construction unless it already is, and finalises it on destruction
+/// only if this object initialised it. Create it first in main(), before Kokkos.
+class MpiSession
+{
+public:
+  MpiSession(int &argc, char **&argv)
+  {
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (!initialised)
+    {
+      MPI_Init(&argc, &argv);
+      _owner = true;
+    }
+  }
+  ~MpiSession()
+  {
+    int finalised = 0;
+    MPI_Finalized(&finalised);
+    if (_owner && !finalised)
+      MPI_Finalize();
+  }
+  MpiSession(const MpiSession &) = delete;
+  MpiSession &operator=(const MpiSession &) = delete;
+
+private:
+  bool _owner = false;
+};
+
+/// \brief True between MPI_Init and MPI_Finalize.
+inline bool mpiActive()
+{
+  int initialised = 0, finalised = 0;
+  MPI_Initialized(&initialised);
+  MPI_Finalized(&finalised);
+  return initialised && !finalised;
+}
+
+/// \brief This process's rank in `comm` (0 when MPI is not active).
+inline int mpiRank(MPI_Comm comm = MPI_COMM_WORLD)
+{
+  int r = 0;
+  if (mpiActive())
+    MPI_Comm_rank(comm, &r);
+  return r;
+}
+
+/// \brief Number of ranks in `comm` (1 when MPI is not active).
+inline int mpiSize(MPI_Comm comm = MPI_COMM_WORLD)
+{
+  int s = 1;
+  if (mpiActive())
+    MPI_Comm_size(comm, &s);
+  return s;
+}
+
+/// \brief Global minimum over the ranks (exact, so every rank gets the same bits): the stable
+/// time step of step 12 [s].
+inline Real allReduceMin(Real value, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  Real out = value;
+  if (mpiActive())
+    MPI_Allreduce(&value, &out, 1, MPI_DOUBLE, MPI_MIN, comm);
+  return out;
+}
+
+/// \brief Global maximum over the ranks (exact).
+inline Real allReduceMax(Real value, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  Real out = value;
+  if (mpiActive())
+    MPI_Allreduce(&value, &out, 1, MPI_DOUBLE, MPI_MAX, comm);
+  return out;
+}
+
+/// \brief Element-wise global sum of `n` values, added in ascending rank order (0 + v_0 + v_1
+/// + ...) after an all-gather. MPI_SUM leaves the order to the library; this way the result is
+/// bitwise the same on every rank and for every run with the same rank count (energies,
+/// momenta). Cost: n * size values per rank, fine for the handful of diagnostics per cycle.
+inline void allReduceSum(Real *values, int n, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  const int size = mpiSize(comm);
+  if (size == 1 || n <= 0)
+    return;
+  std::vector<Real> all(size_t(n) * size_t(size));
+  MPI_Allgather(values, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, comm);
+  for (int i = 0; i < n; ++i)
+  {
+    Real s = 0;
+    for (int r = 0; r < size; ++r)
+      s += all[size_t(r) * size_t(n) + size_t(i)];
+    values[i] = s;
+  }
+}
+
+/// \brief Global sum of one value in ascending rank order (see the array version).
+inline Real allReduceSum(Real value, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  allReduceSum(&value, 1, comm);
+  return value;
+}
+
+/// \brief Integer global sum (exact).
+inline long long allReduceSum(long long value, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  long long out = value;
+  if (mpiActive())
+    MPI_Allreduce(&value, &out, 1, MPI_LONG_LONG, MPI_SUM, comm);
+  return out;
+}
+
+/// \brief Global bounding box [m]: lo and hi become the minimum and maximum over the ranks
+/// (exact, one message), so every rank derives the same sorting bins from them (step 2, and
+/// contact search cycles once nodes move).
+inline void allReduceBox(std::array<Real, 3> &lo, std::array<Real, 3> &hi, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  if (!mpiActive())
+    return;
+  Real v[6] = {lo[0], lo[1], lo[2], -hi[0], -hi[1], -hi[2]};
+  MPI_Allreduce(MPI_IN_PLACE, v, 6, MPI_DOUBLE, MPI_MIN, comm);
+  lo = {v[0], v[1], v[2]};
+  hi = {-v[3], -v[4], -v[5]};
+}
+
+/// \brief True on every rank iff `flag` is true on every rank (collective pass/fail).
+inline bool allTrue(bool flag, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  int in = flag ? 1 : 0, out = in;
+  if (mpiActive())
+    MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LAND, comm);
+  return out != 0;
+}
+
+} // namespace scpdyn

@@ -1,0 +1,252 @@
+// Shared-node sum plan (see NodeHalo.hpp).
+#include "parallel/NodeHalo.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace scpdyn
+{
+namespace
+{
+
+template <class T>
+DeviceView<T *> toDevice(const char *label, const std::vector<T> &host)
+{
+  DeviceView<T *> v(std::string(label), host.size());
+  auto h = Kokkos::create_mirror_view(v);
+  for (size_t i = 0; i < host.size(); ++i)
+    h(i) = host[i];
+  Kokkos::deep_copy(v, h);
+  return v;
+}
+
+bool finalised()
+{
+  int f = 0;
+  MPI_Finalized(&f);
+  return f != 0;
+}
+
+} // namespace
+
+NodeHalo::NodeHalo(const LocalDomain &domain, MPI_Comm comm)
+{
+  MPI_Comm_dup(comm, &_comm);
+  MPI_Comm_rank(_comm, &_rank);
+  if (_rank != domain.rank)
+    throw std::runtime_error("NodeHalo: domain of rank " + std::to_string(domain.rank) +
+                             " built on rank " + std::to_string(_rank));
+  const SharedNodes &sh = domain.shared;
+  _num_shared = sh.size();
+  for (int r : sh.ranks)
+    if (r != _rank)
+      _neighbours.push_back(r);
+  std::sort(_neighbours.begin(), _neighbours.end());
+  _neighbours.erase(std::unique(_neighbours.begin(), _neighbours.end()), _neighbours.end());
+
+  // Slots: for each neighbour, the shared nodes it holds in ascending shared index (= global
+  // id), so both ends list the same nodes in the same order.
+  const size_t nn = _neighbours.size();
+  std::vector<std::vector<Index>> nodes_of(nn);
+  for (Index s = 0; s < sh.size(); ++s)
+    for (Index k = sh.rank_offsets[size_t(s)]; k < sh.rank_offsets[size_t(s) + 1]; ++k)
+    {
+      const int r = sh.ranks[size_t(k)];
+      if (r == _rank)
+        continue;
+      const size_t j = size_t(std::lower_bound(_neighbours.begin(), _neighbours.end(), r) -
+                              _neighbours.begin());
+      nodes_of[j].push_back(s);
+    }
+  _neighbour_offset.assign(nn + 1, 0);
+  std::vector<Index> slot_node;
+  for (size_t j = 0; j < nn; ++j)
+  {
+    for (Index s : nodes_of[j])
+      slot_node.push_back(sh.local[size_t(s)]);
+    _neighbour_offset[j + 1] = Index(slot_node.size());
+  }
+  _num_slots = Index(slot_node.size());
+
+  // Sum recipe per shared node: its holders in ascending rank order, own value as -1. The slot
+  // of (node s, neighbour j) is found by walking the neighbours' lists in step with s.
+  std::vector<size_t> cursor(nn, 0);
+  std::vector<Index> sum_offset(1, 0), sum_source;
+  bool holds_self = true;
+  for (Index s = 0; s < sh.size(); ++s)
+  {
+    bool self = false;
+    for (Index k = sh.rank_offsets[size_t(s)]; k < sh.rank_offsets[size_t(s) + 1]; ++k)
+    {
+      const int r = sh.ranks[size_t(k)];
+      if (r == _rank)
+      {
+        sum_source.push_back(-1);
+        self = true;
+        continue;
+      }
+      const size_t j = size_t(std::lower_bound(_neighbours.begin(), _neighbours.end(), r) -
+                              _neighbours.begin());
+      sum_source.push_back(_neighbour_offset[j] + Index(cursor[j]++));
+    }
+    holds_self = holds_self && self;
+    sum_offset.push_back(Index(sum_source.size()));
+  }
+  if (!holds_self)
+    throw std::runtime_error("NodeHalo: a shared node's rank list misses its own rank");
+
+  _slot_node = toDevice("scpdyn::comm::nodeHalo::slot_node", slot_node);
+  _shared_node = toDevice("scpdyn::comm::nodeHalo::shared_node", sh.local);
+  _sum_offset = toDevice("scpdyn::comm::nodeHalo::sum_offset", sum_offset);
+  _sum_source = toDevice("scpdyn::comm::nodeHalo::sum_source", sum_source);
+  setupChannel(_vec, 3, 7301, "scpdyn::comm::nodeHalo::vector");
+  setupChannel(_scal, 1, 7302, "scpdyn::comm::nodeHalo::scalar");
+}
+
+void NodeHalo::setupChannel(Channel &c, int ncomp, int tag, const char *label)
+{
+  c.ncomp = ncomp;
+  c.tag = tag;
+  const size_t n = size_t(ncomp) * size_t(_num_slots);
+  c.send = Buffer(std::string(label) + "_send", n);
+  c.recv = Buffer(std::string(label) + "_recv", n);
+  c.send_host = Kokkos::create_mirror_view(HostSpace(), c.send);
+  c.recv_host = Kokkos::create_mirror_view(HostSpace(), c.recv);
+  const size_t nn = _neighbours.size();
+  c.requests.assign(2 * nn, MPI_REQUEST_NULL);
+  for (size_t j = 0; j < nn; ++j)
+  {
+    const Index first = _neighbour_offset[j] * ncomp;
+    const int count = int((_neighbour_offset[j + 1] - _neighbour_offset[j]) * ncomp);
+    MPI_Recv_init(c.recv_host.data() + first, count, MPI_DOUBLE, _neighbours[j], tag, _comm,
+                  &c.requests[j]);
+    MPI_Send_init(c.send_host.data() + first, count, MPI_DOUBLE, _neighbours[j], tag, _comm,
+                  &c.requests[nn + j]);
+  }
+}
+
+NodeHalo::~NodeHalo()
+{
+  if (finalised())
+    return;
+  for (Channel *c : {&_vec, &_scal})
+  {
+    if (c->in_flight && !c->requests.empty())
+      MPI_Waitall(int(c->requests.size()), c->requests.data(), MPI_STATUSES_IGNORE);
+    for (MPI_Request &r : c->requests)
+      if (r != MPI_REQUEST_NULL)
+        MPI_Request_free(&r);
+  }
+  if (_comm != MPI_COMM_NULL)
+    MPI_Comm_free(&_comm);
+}
+
+void NodeHalo::start(Channel &c, const Real *field)
+{
+  if (c.in_flight)
+    throw std::logic_error("NodeHalo::beginSum: the previous sum of this kind is not finished");
+  c.in_flight = true;
+  c.field = field;
+  const int nn = int(_neighbours.size());
+  if (nn > 0)
+    MPI_Startall(nn, c.requests.data());
+}
+
+void NodeHalo::finish(Channel &c, const Real *field)
+{
+  if (!c.in_flight || c.field != field)
+    throw std::logic_error("NodeHalo::endSum without a matching beginSum on the same field");
+  if (!c.requests.empty())
+    MPI_Waitall(int(c.requests.size()), c.requests.data(), MPI_STATUSES_IGNORE);
+  if (c.recv_host.data() != c.recv.data())
+    Kokkos::deep_copy(c.recv, c.recv_host);
+  c.in_flight = false;
+  c.field = nullptr;
+}
+
+void NodeHalo::beginSum(const VectorView &f)
+{
+  start(_vec, f.data());
+  const auto slot_node = _slot_node;
+  const auto buf = _vec.send;
+  Kokkos::parallel_for(
+      "scpdyn::comm::nodeHalo::packVector", Kokkos::RangePolicy<ExecSpace>(0, _num_slots),
+      KOKKOS_LAMBDA(const Index k) {
+        const Index n = slot_node(k);
+        for (int i = 0; i < 3; ++i)
+          buf(3 * k + i) = f(n, i);
+      });
+  ExecSpace().fence();
+  if (_vec.send_host.data() != _vec.send.data())
+    Kokkos::deep_copy(_vec.send_host, _vec.send);
+  const int nn = int(_neighbours.size());
+  if (nn > 0)
+    MPI_Startall(nn, _vec.requests.data() + nn);
+  _bytes_sent += bytesPerVectorSum();
+}
+
+void NodeHalo::endSum(const VectorView &f)
+{
+  finish(_vec, f.data());
+  const auto shared_node = _shared_node;
+  const auto offset = _sum_offset;
+  const auto source = _sum_source;
+  const auto buf = _vec.recv;
+  // total = ((0 + p_r0) + p_r1) + ... over the holders r0 < r1 < ...: the same additions in the
+  // same order on every rank, hence the same bits (additions only, nothing to contract).
+  Kokkos::parallel_for(
+      "scpdyn::comm::nodeHalo::sumVector", Kokkos::RangePolicy<ExecSpace>(0, _num_shared),
+      KOKKOS_LAMBDA(const Index s) {
+        const Index n = shared_node(s);
+        Real t[3] = {0, 0, 0};
+        for (Index k = offset(s); k < offset(s + 1); ++k)
+        {
+          const Index src = source(k);
+          for (int i = 0; i < 3; ++i)
+            t[i] += src < 0 ? f(n, i) : buf(3 * src + i);
+        }
+        for (int i = 0; i < 3; ++i)
+          f(n, i) = t[i];
+      });
+}
+
+void NodeHalo::beginSum(const RealView &m)
+{
+  start(_scal, m.data());
+  const auto slot_node = _slot_node;
+  const auto buf = _scal.send;
+  Kokkos::parallel_for(
+      "scpdyn::comm::nodeHalo::packScalar", Kokkos::RangePolicy<ExecSpace>(0, _num_slots),
+      KOKKOS_LAMBDA(const Index k) { buf(k) = m(slot_node(k)); });
+  ExecSpace().fence();
+  if (_scal.send_host.data() != _scal.send.data())
+    Kokkos::deep_copy(_scal.send_host, _scal.send);
+  const int nn = int(_neighbours.size());
+  if (nn > 0)
+    MPI_Startall(nn, _scal.requests.data() + nn);
+  _bytes_sent += bytesPerScalarSum();
+}
+
+void NodeHalo::endSum(const RealView &m)
+{
+  finish(_scal, m.data());
+  const auto shared_node = _shared_node;
+  const auto offset = _sum_offset;
+  const auto source = _sum_source;
+  const auto buf = _scal.recv;
+  Kokkos::parallel_for(
+      "scpdyn::comm::nodeHalo::sumScalar", Kokkos::RangePolicy<ExecSpace>(0, _num_shared),
+      KOKKOS_LAMBDA(const Index s) {
+        const Index n = shared_node(s);
+        Real t = 0;
+        for (Index k = offset(s); k < offset(s + 1); ++k)
+        {
+          const Index src = source(k);
+          t += src < 0 ? m(n) : buf(src);
+        }
+        m(n) = t;
+      });
+}
+
+} // namespace scpdyn

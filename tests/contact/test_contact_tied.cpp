@@ -1,0 +1,143 @@
+// Tied (sticky) interfaces against the one-mesh twin: verification T6a (1-D column, exact) and
+// T6d (staggered limestone brick wall, every joint sticky, vs inputs/examples/wall_pulse_2d.yaml).
+#include "ContactTestUtil.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+using namespace scpdyn;
+using namespace scpdyn::test;
+
+namespace
+{
+
+// 1-D column of quads on rollers, two bodies of 50 elements; a 10 MPa half-sine pulse on the
+// left end crosses the interface, reflects at the free right end as tension and crosses back.
+std::string columnDeck(bool tied)
+{
+  std::string d = R"(dimension: 2
+time: {end: 30.0e-6, courant: 0.5}
+materials:
+  - {name: ls, model: elastic, density: 2600, youngs_modulus: 43.875e9, poisson_ratio: 0.25}
+parts:
+  - name: left
+    material: ls
+    mesh: {type: block, element: quad4, elements: [50, 1], origin: [0.0, 0.0], size: [0.05, 0.001]}
+    merge_nodes: MERGE
+  - name: right
+    material: ls
+    mesh: {type: block, element: quad4, elements: [50, 1], origin: [0.05, 0.0], size: [0.05, 0.001]}
+    merge_nodes: MERGE
+node_sets:
+  - {name: all, box: {min: [-1, -1], max: [1, 1]}}
+face_sets:
+  - {name: left_end, box: {min: [0, 0], max: [0, 0.001]}}
+functions:
+  - {name: pulse, points: [[0, 0], [1.0e-6, 0.7071], [2.0e-6, 1.0], [3.0e-6, 0.7071], [4.0e-6, 0]]}
+boundary_conditions:
+  - {type: velocity, node_set: all, component: y, value: 0}
+  - {type: pressure, face_set: left_end, value: 10.0e6, function: pulse}
+)";
+  d = replaced(replaced(d, "MERGE", tied ? "false" : "true"), "MERGE", tied ? "false" : "true");
+  if (tied)
+    d += "contact:\n  search_interval: once\n  surfaces:\n    - {name: tie, part: \"*\", option: sticky}\n";
+  return d;
+}
+
+/// node ids of `b` matched to `a` by initial position
+std::vector<Index> matchNodes(const Solver &a, const Solver &b)
+{
+  auto xa = Kokkos::create_mirror_view_and_copy(HostSpace(), a.nodes().x0);
+  auto xb = Kokkos::create_mirror_view_and_copy(HostSpace(), b.nodes().x0);
+  std::map<std::pair<long, long>, Index> at;
+  for (Index n = 0; n < a.nodes().count; ++n)
+    at[{std::lround(xa(n, 0) * 1e7), std::lround(xa(n, 1) * 1e7)}] = n;
+  std::vector<Index> m(size_t(b.nodes().count));
+  for (Index n = 0; n < b.nodes().count; ++n)
+    m[size_t(n)] = at.at({std::lround(xb(n, 0) * 1e7), std::lround(xb(n, 1) * 1e7)});
+  return m;
+}
+
+std::string wallDeck(bool tied, double courant)
+{
+  std::string d = readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/wall_pulse_2d.yaml");
+  d = replaced(d, "courant: 0.5", "courant: " + std::to_string(courant));
+  if (tied)
+  {
+    // the same wall, h = 2.5 mm, as 8 courses of 25 x 10 mm bricks, each its own part
+    d = replaced(d, "mesh: {type: block, element: quad4, elements: [80, 32], origin: [0.0, 0.0], "
+                    "size: [0.2, 0.08]}",
+                 "mesh: {type: brick_wall, element: quad4, elements: [10, 4], origin: [0.0, 0.0], "
+                 "brick_size: [0.025, 0.01], count: [8, 8], stagger: 0.5}");
+    d += "\ncontact:\n  search_interval: once\n  surfaces:\n"
+         "    - {name: mortar, part: wall, option: sticky}\n";
+  }
+  return d;
+}
+
+} // namespace
+
+// T6a: with the velocity correction v* (internal forces included, 10.6) the tied face nodes move
+// exactly as the merged node of the one-mesh column: v' = (m1 v1 + m2 v2 + dt (f1 + f2))/(m1 + m2).
+// Tolerance 1e-12 of the largest velocity (round-off of the different summation order).
+TEST(ContactTied, T6aColumnIsExact)
+{
+  Solver merged(deckFromText(columnDeck(false), "t6a_merged"));
+  Solver tied(deckFromText(columnDeck(true), "t6a_tied"));
+  ASSERT_EQ(merged.nodes().count + 2, tied.nodes().count);
+  const std::vector<Index> map = matchNodes(merged, tied);
+  double worst = 0, vmax = 0, tension = 0;
+  while (merged.time() < merged.deck().end_time)
+  {
+    merged.cycle();
+    tied.cycle();
+    ASSERT_EQ(merged.dt(), tied.dt());
+    auto va = Kokkos::create_mirror_view_and_copy(HostSpace(), merged.nodes().v);
+    auto vb = Kokkos::create_mirror_view_and_copy(HostSpace(), tied.nodes().v);
+    for (Index n = 0; n < tied.nodes().count; ++n)
+    {
+      worst = std::max(worst, std::fabs(vb(n, 0) - va(map[size_t(n)], 0)));
+      vmax = std::max(vmax, std::fabs(va(map[size_t(n)], 0)));
+    }
+    auto state = Kokkos::create_mirror_view_and_copy(HostSpace(), tied.contact()->planes().state);
+    for (Index p = 0; p < tied.contact()->count(); ++p)
+      tension = std::min(tension, state(p).Fn);
+  }
+  ASSERT_GT(vmax, 0.1);
+  EXPECT_LT(worst / vmax, 1e-12) << worst << " of " << vmax;
+  EXPECT_LT(tension, 0) << "the reflected tension must have crossed the tie";
+}
+
+// T6d: tied staggered bricks vs the one mesh, S = 0.5 and 0.9. Pass (verification.md): E2 of
+// every gauge <= 2 %, no growth of the difference (the last 20 us no worse than the first 40,
+// here with a 1.5x allowance on the mean-square error per unit time), energy balance < 1 %.
+TEST(ContactTied, T6dStaggeredWallMatchesOneMesh)
+{
+  for (const double S : {0.5, 0.9})
+  {
+    SCOPED_TRACE("S = " + std::to_string(S));
+    const std::string tag = S < 0.7 ? "s05" : "s09";
+    const std::string mono = runDeck(wallDeck(false, S), "t6d_mono_" + tag);
+    const std::string tied = runDeck(wallDeck(true, S), "t6d_tied_" + tag);
+    auto a = readCsv(tied + "/gauges.csv"), r = readCsv(mono + "/gauges.csv");
+    for (const auto &kv : r)
+    {
+      if (kv.first == "time")
+        continue;
+      const double e2 = historyE2(a["time"], a[kv.first], r["time"], kv.second, 0, 60e-6);
+      EXPECT_LT(e2, 0.02) << kv.first;
+      const double early = meanSquareDifference(a["time"], a[kv.first], r["time"], kv.second, 0, 40e-6);
+      const double late = meanSquareDifference(a["time"], a[kv.first], r["time"], kv.second, 40e-6, 60e-6);
+      EXPECT_LE(late, 1.5 * early) << kv.first;
+    }
+    auto h = readCsv(tied + "/history.csv");
+    double worst = 0;
+    for (double e : h["energy_balance_error"])
+      worst = std::max(worst, std::fabs(e));
+    EXPECT_LT(worst, 0.01);
+    // the ties take out (almost) nothing: the tied wall is elastic like the one mesh
+    EXPECT_LT(std::fabs(h["contact_dissipation"].back()), 0.01 * h["external_work"].back());
+  }
+}

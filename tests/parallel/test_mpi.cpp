@@ -1,0 +1,76 @@
+// MPI helpers (src/parallel/Mpi.hpp) and the quiet-output set-up of the MPI test executable.
+#include "parallel/ParallelTestUtil.hpp"
+
+#include <cmath>
+
+namespace scpdyn::test
+{
+namespace
+{
+
+/// On ranks other than 0, print failed assertions only (prefixed by the rank), so a 3-rank run
+/// reads like a serial one.
+class RankFailurePrinter : public ::testing::EmptyTestEventListener
+{
+public:
+  void OnTestPartResult(const ::testing::TestPartResult &r) override
+  {
+    if (r.failed())
+      std::printf("[rank %d] %s:%d: Failure\n%s\n", mpiRank(), r.file_name() ? r.file_name() : "?",
+                  r.line_number(), r.summary());
+  }
+  void OnTestEnd(const ::testing::TestInfo &info) override
+  {
+    if (info.result()->Failed())
+      std::printf("[rank %d] FAILED %s.%s\n", mpiRank(), info.test_suite_name(), info.name());
+  }
+};
+
+class QuietRanks : public ::testing::Environment
+{
+public:
+  void SetUp() override
+  {
+    if (mpiRank() == 0)
+      return;
+    auto &listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+    listeners.Append(new RankFailurePrinter);
+  }
+};
+
+const auto *const quiet_ranks = ::testing::AddGlobalTestEnvironment(new QuietRanks);
+
+} // namespace
+
+TEST(Mpi, ReductionsAgreeOnEveryRank)
+{
+  const int rank = mpiRank(), size = mpiSize();
+  EXPECT_TRUE(mpiActive());
+  EXPECT_GE(rank, 0);
+  EXPECT_LT(rank, size);
+  // time steps: min is exact
+  EXPECT_EQ(allReduceMin(1e-6 * (1.5 + rank)), 1.5e-6);
+  EXPECT_EQ(allReduceMax(Real(rank)), Real(size - 1));
+  // sum in ascending rank order of non-dyadic values: the reference is the same loop here
+  Real ref = 0;
+  for (int r = 0; r < size; ++r)
+    ref += 1.0 / (3.0 + r);
+  const Real s = allReduceSum(1.0 / (3.0 + rank));
+  EXPECT_EQ(bits(s), bits(ref));
+  const std::vector<Real> root = broadcastFromRoot(std::vector<Real>{s});
+  EXPECT_EQ(bits(root[0]), bits(s)); // same bits on every rank
+  Real several[2] = {Real(rank), 0.25};
+  allReduceSum(several, 2);
+  EXPECT_EQ(several[0], Real(size * (size - 1) / 2));
+  EXPECT_EQ(several[1], 0.25 * size);
+  EXPECT_EQ(allReduceSum((long long)(rank + 1)), (long long)(size * (size + 1) / 2));
+  std::array<Real, 3> lo = {Real(rank), -1.0 - rank, 0.5}, hi = {Real(rank) + 2, 1.0, 0.5 + rank};
+  allReduceBox(lo, hi);
+  EXPECT_EQ(lo, (std::array<Real, 3>{0, -Real(size), 0.5}));
+  EXPECT_EQ(hi, (std::array<Real, 3>{Real(size) + 1, 1.0, 0.5 + size - 1}));
+  EXPECT_TRUE(allTrue(true));
+  EXPECT_FALSE(allTrue(rank != size - 1)); // false on one rank only
+}
+
+} // namespace scpdyn::test
