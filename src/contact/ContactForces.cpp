@@ -6,7 +6,6 @@
 #include "contact/JointConstraints.hpp"
 
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 
 namespace scpdyn
@@ -124,38 +123,29 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
         k.dt = dt;
         k.mstar = mstar;
         k.Fint_n = 0;
-        Real Vmodel[3] = {Vrel[0], Vrel[1], Vrel[2]};
-        const Real kBeta = std::getenv("BETA") ? std::atof(std::getenv("BETA")) : 1.0;
-        if (P.option == ContactOption::Implicit && s.dt_model > 0 && !std::getenv("NOCORR"))
+        if (P.option == ContactOption::Implicit && s.dt_model > 0)
         { // The model masses predicted last step's end velocity; the mesh moved otherwise, and
           // the difference is closure and shear the joint has not seen. Feed it into this
           // step's increments (B of (20) and the shear increment), where the inertia of the
-          // model damps it: without it u and Fs drift from the real kinematics (a block on an
-          // incline creeps and rocks into its base); applied explicitly instead, it leaves a
-          // slow, lightly damped oscillation (patch test).
+          // model damps it: without it u and Fs drift from the real kinematics wherever the CP
+          // forces vary from face to face (a block on an incline creeps and rocks into its base).
           Real Va1[3], Va2[3];
           cpVelocities(F, cp, p, P.velocity, v, Va1, Va2);
           Real vn = 0;
           for (int d = 0; d < 3; ++d)
           {
-            const Real corr = kBeta * (Va1[d] - Va2[d] - s.V_model[d]) * s.dt_model / dt;
+            const Real corr = (Va1[d] - Va2[d] - s.V_model[d]) * s.dt_model / dt;
             k.Vs[d] += corr;
-            if (std::getenv("INTEG"))
-              Vmodel[d] += corr;
             vn += corr * n[d];
           }
-          if (!std::getenv("SHEARONLY"))
-            k.Vn += vn;
-          else
-            for (int d = 0; d < 3; ++d)
-              k.Vs[d] -= vn * n[d];
+          k.Vn += vn;
         }
         const CpStepResult r =
             P.option == ContactOption::Explicit ? updateExplicit(P, s, k) : updateImplicit(P, s, k);
         if (P.option == ContactOption::Implicit)
         { // the model's end-of-step relative velocity (10.2): V' = V* - dt F'/m*
           for (int d = 0; d < 3; ++d)
-            s.V_model[d] = Vmodel[d] - dt * (r.Fn * n[d] + r.Fs[d]) / mstar;
+            s.V_model[d] = Vrel[d] - dt * (r.Fn * n[d] + r.Fs[d]) / mstar;
           s.dt_model = dt;
         }
         Real Fv[3];

@@ -68,7 +68,6 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   {
     const std::string &o = deck.contact.surfaces[s].option;
     _has_constraints = _has_constraints || o == "sticky" || o == "slide_line";
-    _has_joints = _has_joints || o == "explicit" || o == "implicit";
     _has_explicit = _has_explicit || o == "explicit";
     _has_sticky = _has_sticky || o == "sticky";
     _has_slide = _has_slide || o == "slide_line";

@@ -45,10 +45,10 @@ public:
   bool searchDue(long cycle) const;
   /// \brief Step 3: on search cycles, half-step face geometry and sorting bins.
   void sortIntoBins(const NodeFields &nodes, Real dt, long cycle);
-  /// \brief Step 9: detection on search cycles, then every CP's force (sub-steps A-E), added to
-  /// nodes.f_int. `elements` gives densities for the paper form of (19). Returns a failure
-  /// naming the CP when a force is not finite or a joint's closure passes its aperture; the
-  /// forces are then not applied.
+  /// \brief Step 9: detection on search cycles, then every CP's force (sub-steps A-E), scattered
+  /// atomically to a contact-force field and added to nodes.f_int. Returns a failure naming the
+  /// CP when a force is not finite or a joint's closure passes its aperture; the forces are then
+  /// not applied and the CP histories are restored.
   ContactFailure computeForces(const NodeFields &nodes, const BoundaryConditions &bc, Real dt,
                                long cycle, Real time);
   /// \brief Step 12: smallest explicit-contact time step (19) over the active explicit CPs, from
@@ -67,6 +67,8 @@ public:
   const ContactFaceData &faces() const { return _faces; }
   const CommonPlaneData &planes() const { return _cp; }
   const std::vector<ContactFaceInfo> &faceInfo() const { return _info; }
+  /// \brief The contact force of the last step on every node [N] (zero away from contact faces).
+  const VectorView &nodalForces() const { return _fc; }
   /// \brief The live CPs, copied to the host.
   ContactPointsHost points() const;
   /// \brief "faces (element 12 face 1 of part 'a') and (element 40 face 3 of part 'b')".
@@ -93,7 +95,7 @@ private:
   FaceGeometryData _geom;
   FaceBins _bins;
   long _binned_cycle = -1;
-  bool _has_joints = false, _has_constraints = false, _has_explicit = false;
+  bool _has_constraints = false, _has_explicit = false;
   bool _has_sticky = false, _has_slide = false;
   VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
   IndexView _tie_mode;   ///< per CP: which velocity constraint it imposes this cycle

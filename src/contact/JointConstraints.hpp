@@ -65,8 +65,8 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateSlideLine(CpState &s, const CpKinemati
 
 /// \brief Sticky (24) unclamped + (25): F = m*(V1 - V2)/dt + Fint, so the model masses end the
 /// step with V1' = V2'. No tension or Coulomb limit. A node shared by several CPs is
-/// over-corrected by one pass (10.8): the caller must repeat the velocity correction (Jacobi
-/// passes on v*, adding each pass's force) or share the node mass among its CPs.
+/// over-corrected by one pass of independent CPs (10.8): this is the single-CP form; the
+/// runtime solves all the ties of a cycle together (contact/ContactConstraints.cpp).
 KOKKOS_INLINE_FUNCTION CpStepResult updateSticky(CpState &s, const CpKinematics &k)
 {
   CpStepResult r;

@@ -104,32 +104,7 @@ void Solver::setupMesh()
         if (_mesh.dim != 0 && g.dim != _mesh.dim)
           throw std::runtime_error("mesh dimension " + std::to_string(g.dim) +
                                    " differs from the other parts");
-        const Index offset = _mesh.numNodes();
-        _mesh.dim = g.dim;
-        _mesh.coords.insert(_mesh.coords.end(), g.coords.begin(), g.coords.end());
-        for (auto p : g.parts)
-        {
-          for (auto &n : p.connectivity)
-            n += offset;
-          p.name = spec.name + "." + p.name;
-          _mesh.parts.push_back(p);
-        }
-        for (auto &kv : g.node_sets)
-        {
-          auto &dst = _mesh.node_sets[kv.first];
-          for (Index n : kv.second)
-            dst.push_back(n + offset);
-        }
-        for (auto &kv : g.face_sets)
-        {
-          auto &dst = _mesh.face_sets[kv.first];
-          for (HostFace f : kv.second)
-          {
-            for (int k = 0; k < f.num_nodes; ++k)
-              f.nodes[size_t(k)] += offset;
-            dst.push_back(f);
-          }
-        }
+        appendMesh(_mesh, std::move(g), spec.name + ".");
       }
     }
     catch (const InputError &)

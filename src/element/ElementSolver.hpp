@@ -124,10 +124,13 @@ KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
   st.length = length;
 
   const Real trD = st.D[0] + st.D[1] + st.D[2];
-  const Real lq = D == 1 ? measure : D == 2 ? kmath::sqrt(measure) : kmath::cbrt(measure);
-  const Real c_old = s.sound_speed;
-  const Real q_new =
-      trD < 0 ? st.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * c_old * trD) : 0;
+  Real q_new = 0;
+  if (trD < 0) // the viscosity length (a cbrt call in 3D) is needed in compression only
+  {
+    const Real lq = D == 1 ? measure : D == 2 ? kmath::sqrt(measure) : kmath::cbrt(measure);
+    const Real c_old = s.sound_speed;
+    q_new = st.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * c_old * trD);
+  }
   // the viscous heating is booked with the step's mean q, as the kinetic energy sees the mean
   // of the forces at n-1/2 and n+1/2 (leapfrog energy balance, see NodeUpdate.cpp)
   st.q = 0.5 * (s.q + q_new);

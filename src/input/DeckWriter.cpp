@@ -151,6 +151,8 @@ void writeGauge(YAML::Emitter &out, const GaugeSpec &g, int dim)
 
 void writeContact(YAML::Emitter &out, const ContactSpec &c)
 {
+  if (c.surfaces.empty()) // no key: no contact (the section needs at least one surface)
+    return;
   out << YAML::Key << "contact" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "search_interval" << YAML::Value;
   if (c.search_interval == 0)

@@ -376,4 +376,38 @@ Real meshMeasure(const HostMesh &mesh, int part)
   return sum;
 }
 
+void appendMesh(HostMesh &dst, HostMesh src, const std::string &prefix)
+{
+  const Index node_offset = dst.numNodes();
+  const Index element_offset = dst.numElements();
+  const int part_offset = int(dst.parts.size());
+  dst.dim = src.dim;
+  dst.coords.insert(dst.coords.end(), src.coords.begin(), src.coords.end());
+  for (auto &p : src.parts)
+  {
+    for (auto &n : p.connectivity)
+      n += node_offset;
+    p.name = prefix + p.name;
+    dst.parts.push_back(std::move(p));
+  }
+  for (auto &kv : src.node_sets)
+  {
+    auto &out = dst.node_sets[kv.first];
+    for (Index n : kv.second)
+      out.push_back(n + node_offset);
+  }
+  for (auto &kv : src.face_sets)
+  {
+    auto &out = dst.face_sets[kv.first];
+    for (HostFace f : kv.second)
+    {
+      for (int k = 0; k < f.num_nodes; ++k)
+        f.nodes[size_t(k)] += node_offset;
+      f.element += element_offset;
+      f.part += part_offset;
+      out.push_back(f);
+    }
+  }
+}
+
 } // namespace scpdyn

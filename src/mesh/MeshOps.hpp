@@ -15,6 +15,7 @@
 #include "mesh/HostMesh.hpp"
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace scpdyn
@@ -67,6 +68,10 @@ std::vector<HostFace> facesOfParts(const std::vector<HostFace> &external,
 /// "Degenerate" is judged relative to the element's edge lengths (sine of a corner angle
 /// below 1e-12), so collinear or coincident nodes are caught despite round-off.
 void checkElements(const HostMesh &mesh);
+
+/// \brief Appends `src` to `dst`: nodes, parts (names prefixed with `prefix`), node sets and
+/// face sets, with node, element and part ids shifted past what `dst` already holds.
+void appendMesh(HostMesh &dst, HostMesh src, const std::string &prefix);
 
 /// \brief Length (m), area (m^2) or volume (m^3) of one part (exact for these element types).
 Real meshMeasure(const HostMesh &mesh, int part);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -49,6 +50,14 @@ inline std::string runDeck(const std::string &yaml, const std::string &name)
   Solver s(deckFromText(yaml, name));
   s.run(dir);
   return dir;
+}
+
+/// A number for RecordProperty, in scientific notation.
+inline std::string sci(double x)
+{
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4e", x);
+  return b;
 }
 
 /// Value of a sampled history at time t (linear interpolation, constant beyond the ends).

@@ -115,17 +115,17 @@ TEST(ContactDeck, ResolvedDeckRoundTrips)
 TEST(ContactDeck, ErrorsNameTheKey)
 {
   EXPECT_NE(errorOf("contact:\n  surfaces:\n    - {name: j, part: c, option: sticky}\n")
-                .find("contact.surfaces[0].part (line 11): unknown part 'c'"),
+                .find("contact.surfaces[0].part (line 12): unknown part 'c'"),
             std::string::npos);
   EXPECT_NE(errorOf("contact:\n  surfaces:\n    - {name: j, part: a, option: stiky}\n")
-                .find("contact.surfaces[0].option (line 11)"),
+                .find("contact.surfaces[0].option (line 12)"),
             std::string::npos);
   // a modulus given in Pa where Table 1 units (GPa) are expected
   EXPECT_NE(errorOf("contact:\n  surfaces:\n    - {name: j, part: a, E0: 5.0e8}\n")
-                .find("contact.surfaces[0].E0 (line 11): is in GPa"),
+                .find("contact.surfaces[0].E0 (line 12): is in GPa"),
             std::string::npos);
   EXPECT_NE(errorOf("contact:\n  search_interval: sometimes\n  surfaces:\n    - {name: j, part: a}\n")
-                .find("contact.search_interval (line 10): must be 'once' or an integer"),
+                .find("contact.search_interval (line 11): must be 'once' or an integer"),
             std::string::npos);
   EXPECT_NE(errorOf("contact:\n  surfaces:\n    - {name: j, part: a, face_set: right_of_a}\n")
                 .find("contact.surfaces[0]"),

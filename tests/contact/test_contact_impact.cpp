@@ -93,6 +93,10 @@ TEST(ContactImpact, T1aSlideLine)
   EXPECT_NEAR(r.plateau / sigma, 1.0, 0.01) << r.plateau;
   EXPECT_NEAR(r.v_interface, 5.0, 0.005);
   EXPECT_LT(r.max_momentum_drift, 1e-12);
+  RecordProperty("plateau_rel_err", sci(r.plateau / sigma - 1));
+  RecordProperty("v_interface", sci(r.v_interface));
+  RecordProperty("momentum_drift", sci(r.max_momentum_drift));
+  RecordProperty("loss_over_h4L", sci(r.loss / 0.0025));
   // the velocity constraint's plastic collision of the two face masses (T1, T9): h/(4L)
   // = 0.25 % of KE0, tolerance 30 %
   EXPECT_NEAR(r.loss / 0.0025, 1.0, 0.3) << r.loss;
@@ -111,6 +115,10 @@ TEST(ContactImpact, T1aStickyAndTinyJointAgree)
                             "G: 0.05, C: 0, phi0: 30, phi1: 30}",
                             "t1_joint");
   EXPECT_NEAR(jt.plateau / sigma, 1.0, 0.01) << jt.plateau;
+  RecordProperty("sticky_plateau_rel_err", sci(st.plateau / sigma - 1));
+  RecordProperty("joint_plateau_rel_err", sci(jt.plateau / sigma - 1));
+  RecordProperty("joint_v_interface", sci(jt.v_interface));
+  RecordProperty("momentum_drift", sci(std::max(st.max_momentum_drift, jt.max_momentum_drift)));
   EXPECT_NEAR(jt.v_interface, 5.0, 0.05); // the joint's closure takes a few cycles
   EXPECT_LT(jt.max_momentum_drift, 1e-12);
   EXPECT_LT(jt.max_balance, 1e-3);
@@ -138,6 +146,8 @@ TEST(ContactImpact, T5BlocksMomentumAndInterfaceVelocity)
   }
   EXPECT_LT(drift, 1e-12);
   EXPECT_LT(lateral, 1e-10);
+  RecordProperty("momentum_drift", sci(drift));
+  RecordProperty("lateral", sci(lateral));
   // 15 + 16 faces on the interface overlap in 30 segments (both meshes share the end points)
   EXPECT_EQ(cps, 30);
 }
@@ -179,4 +189,7 @@ gauges:)");
     U -= f / df;
   }
   EXPECT_NEAR(plateau / (rho * U * up), 1.0, 0.01) << plateau << " vs " << rho * U * up;
+  RecordProperty("plateau", sci(plateau));
+  RecordProperty("hugoniot", sci(rho * U * up));
+  RecordProperty("v_interface", sci(vi));
 }
