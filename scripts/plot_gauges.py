@@ -45,7 +45,9 @@ def main(out_dir):
         ax.grid(alpha=0.3)
     ax = axes[-1, 0]
     th = [1e6 * x for x in history["time"]]
-    for key in ("kinetic", "internal", "hourglass", "external_work"):
+    for key in ("kinetic", "internal", "hourglass", "external_work", "contact"):
+        if key not in history:
+            continue
         ax.plot(th, history[key], label=key)
     ax.set_ylabel("energy [J]")
     ax.set_xlabel("time [us]")

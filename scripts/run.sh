@@ -4,7 +4,7 @@
 # Threads: OMP_NUM_THREADS (default: all cores). Results: out/<deck name>/ unless -o DIR.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-DEFAULT_DECK="$ROOT/inputs/examples/wall_pulse_2d.yaml"
+DEFAULT_DECK="$ROOT/inputs/paper/fig5_implicit_S0.5.yaml"
 DECK="${1:-$DEFAULT_DECK}"
 [ $# -gt 0 ] && shift
 [ -f "$DECK" ] || { echo "scripts/run.sh: no deck '$DECK'" >&2; exit 2; }
