@@ -96,6 +96,10 @@ KOKKOS_INLINE_FUNCTION Real initialClosure(const CpGeometry &g)
 
 /// \brief Face centroid, outward normal, area and diameter (section 4.1).
 ///
+/// Dim = 1 (line2 in uniaxial strain): a point face; `x[0]` is the face node and `x[1]` the
+/// element's other node (not a face node: the caller puts it there). n = +-x from x[1] to x[0];
+/// area = the 1 m^2 cross-section of the line2 convention (volume = length x 1 m^2); diameter =
+/// the element length, which sizes the bins and the default search gap like a 2D face's length.
 /// Dim = 2: segment (p, q) with the element on its left, n = (t_y, -t_x)/|t|; area = length x 1 m
 /// (plane strain) or (r_p + r_q)/2 x length per radian (axisymmetric, r = x).
 /// Dim = 3: triangle, or quadrilateral split into the pallet triangles (x_i, x_i+1, c): the normal
@@ -106,6 +110,19 @@ KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool
 {
   using namespace ContactMath;
   FaceGeometry f;
+  if constexpr (Dim == 1)
+  {
+    const Real len = x[0][0] - x[1][0];
+    for (int d = 0; d < 3; ++d)
+      f.c[d] = x[0][d], f.n[d] = 0;
+    f.n[0] = len > 0 ? 1.0 : len < 0 ? -1.0 : 0.0;
+    f.area = 1.0;
+    f.diameter = abs(len);
+    f.valid = len != 0 ? 1 : 0;
+    (void)nn;
+    (void)axisym;
+    return f;
+  }
   for (int d = 0; d < 3; ++d)
   {
     f.c[d] = 0;
@@ -150,8 +167,12 @@ KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool
 }
 
 /// \brief Sub-steps B-D for one face pair (section 4). `x1`, `x2`: half-step node positions of
-/// face 1 (smaller global key, 3.5) and face 2; `n1`, `n2` their node counts (2 in 2D; 3 or 4 in
-/// 3D). `axisym` selects the per-radian 2D geometry of 4.6 (ignored in 3D).
+/// face 1 (smaller global key, 3.5) and face 2; `n1`, `n2` their node counts (1 in 1D, 2 in 2D;
+/// 3 or 4 in 3D; in 1D `x1[1]`, `x2[1]` hold the elements' other nodes, see faceGeometry).
+/// `axisym` selects the per-radian 2D geometry of 4.6 (ignored in 1D and 3D).
+///
+/// 1D: two point faces with opposing normals share the whole 1 m^2 cross-section: Ac = A1p =
+/// A2p = 1 m^2, f1 = f2 = 1, n = n1, x_poc = the midpoint, u0 = (c1 - c2).n (> 0: overlap).
 ///
 /// The result is valid whenever both faces have positive area and n1 != n2; Ac may then still be
 /// zero (no overlap). Activity (3.4) is cpIsActive(). Swapping the faces reverses n and leaves
@@ -161,7 +182,7 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
                                                      int n2, bool axisym)
 {
   using namespace ContactMath;
-  static_assert(Dim == 2 || Dim == 3, "computeCommonPlane: Dim is 2 or 3");
+  static_assert(Dim >= 1 && Dim <= 3, "computeCommonPlane: Dim is 1, 2 or 3");
   CpGeometry g;
   const bool ax = Dim == 2 && axisym;
   const FaceGeometry f1 = faceGeometry<Dim>(x1, n1, ax);
@@ -187,7 +208,13 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
     return g;
 
   Real xi_c = 0, eta_c = 0;
-  if constexpr (Dim == 2)
+  if constexpr (Dim == 1)
+  { // the common cross-section; the basis only spans the (unused) shear plane
+    CpGeom::cpBasis(g.n, g.e1, g.e2);
+    g.Ac = min(g.A1, g.A2);
+    g.A1p = g.A1, g.A2p = g.A2;
+  }
+  else if constexpr (Dim == 2)
   {
     // (4.5, 4.6) project on the CP line: one tangent t_cp = (-n_y, n_x)
     g.e1[0] = -g.n[1], g.e1[1] = g.n[0], g.e2[2] = 1;
@@ -266,6 +293,11 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
 KOKKOS_INLINE_FUNCTION void pocWeights(const Real x[][3], int nn, const CpGeometry &g, Real w[])
 {
   using namespace ContactMath;
+  if (nn == 1)
+  { // a point face (1D)
+    w[0] = 1;
+    return;
+  }
   Real q[4][2], pp[2];
   const Real dp[3] = {g.x_poc[0] - g.x_cp[0], g.x_poc[1] - g.x_cp[1], g.x_poc[2] - g.x_cp[2]};
   pp[0] = dot(dp, g.e1), pp[1] = dot(dp, g.e2);

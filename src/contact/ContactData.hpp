@@ -23,6 +23,9 @@ struct ContactFaceData
   IndexView rigid;          ///< 1 when every node of the face has all velocity components prescribed
   DeviceView<JointParams *> params; ///< per surface, resolved SI parameters
   IndexView nodes_used;     ///< the distinct nodes of all contact faces, ascending
+  /// 1D only: the other node of the element behind the (point) face, which orients the face
+  /// normal (4.1 in 1D); -1 in 2D and 3D
+  IndexView back;
 };
 
 /// \brief Host description of a contact face, for messages and outputs.

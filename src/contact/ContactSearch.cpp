@@ -107,8 +107,11 @@ void computeFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real
       KOKKOS_LAMBDA(const Index f, Real &hm) {
         Real xh[kMaxFaceNodes][3];
         const int nn = gatherHalfStep(F, f, x, v, half_dt, xh);
-        const FaceGeometry g =
-            dim == 2 ? faceGeometry<2>(xh, nn, axisym) : faceGeometry<3>(xh, nn, axisym);
+        if (dim == 1)
+          gatherBackNode(F, f, x, v, half_dt, xh);
+        const FaceGeometry g = dim == 1   ? faceGeometry<1>(xh, nn, false)
+                               : dim == 2 ? faceGeometry<2>(xh, nn, axisym)
+                                          : faceGeometry<3>(xh, nn, axisym);
         for (int d = 0; d < 3; ++d)
         {
           Gd.centroid(f, d) = g.c[d];

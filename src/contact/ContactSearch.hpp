@@ -52,8 +52,18 @@ KOKKOS_INLINE_FUNCTION int gatherHalfStep(const ContactFaceData &F, Index f, con
   return nn;
 }
 
-/// \brief Sub-steps A-D for the face pair (f1, f2) in dimension `dim` (2 or 3); `x1`, `x2`
-/// receive the half-step node positions.
+/// \brief 1D: half-step position of the element's other node behind point face `f` into
+/// `xh[1]` (after the face node in `xh[0]`), the layout faceGeometry<1> reads.
+KOKKOS_INLINE_FUNCTION void gatherBackNode(const ContactFaceData &F, Index f, const VectorView &x,
+                                           const VectorView &v, Real half_dt, Real xh[][3])
+{
+  const Index k = F.back(f);
+  for (int d = 0; d < 3; ++d)
+    xh[1][d] = x(k, d) + half_dt * v(k, d);
+}
+
+/// \brief Sub-steps A-D for the face pair (f1, f2) in dimension `dim` (1, 2 or 3); `x1`, `x2`
+/// receive the half-step node positions (1D: and the elements' other nodes in slot 1).
 KOKKOS_INLINE_FUNCTION CpGeometry pairGeometry(const ContactFaceData &F, Index f1, Index f2,
                                                const VectorView &x, const VectorView &v,
                                                Real half_dt, int dim, bool axisym, Real x1[][3],
@@ -61,6 +71,12 @@ KOKKOS_INLINE_FUNCTION CpGeometry pairGeometry(const ContactFaceData &F, Index f
 {
   const int n1 = gatherHalfStep(F, f1, x, v, half_dt, x1);
   const int n2 = gatherHalfStep(F, f2, x, v, half_dt, x2);
+  if (dim == 1)
+  {
+    gatherBackNode(F, f1, x, v, half_dt, x1);
+    gatherBackNode(F, f2, x, v, half_dt, x2);
+    return computeCommonPlane<1>(x1, n1, x2, n2, false);
+  }
   return dim == 2 ? computeCommonPlane<2>(x1, n1, x2, n2, axisym)
                   : computeCommonPlane<3>(x1, n1, x2, n2, axisym);
 }

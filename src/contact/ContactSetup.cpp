@@ -130,15 +130,20 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   F.surface = IndexView("contact_face_surface", nf);
   F.mass = RealView("contact_face_mass", nf);
   F.rigid = IndexView("contact_face_rigid", nf);
+  F.back = IndexView("contact_face_back", nf);
   auto h_nodes = Kokkos::create_mirror_view(F.nodes);
   auto h_nn = Kokkos::create_mirror_view(F.num_nodes);
   auto h_el = Kokkos::create_mirror_view(F.element);
   auto h_surf = Kokkos::create_mirror_view(F.surface);
   auto h_mass = Kokkos::create_mirror_view(F.mass);
   auto h_rigid = Kokkos::create_mirror_view(F.rigid);
+  auto h_back = Kokkos::create_mirror_view(F.back);
   auto h_emass = Kokkos::create_mirror_view_and_copy(HostSpace(), in.elems.mass);
   auto h_bc = Kokkos::create_mirror_view_and_copy(HostSpace(), in.nodes.bc);
   const int dim = deck.dimension;
+  std::vector<Index> first_element(mesh.parts.size() + 1, 0); // global element ids per part
+  for (size_t p = 0; p < mesh.parts.size(); ++p)
+    first_element[p + 1] = first_element[p] + mesh.parts[p].numElements();
   std::vector<Index> used;
   info.assign(nf, ContactFaceInfo());
   for (size_t i = 0; i < nf; ++i)
@@ -163,6 +168,13 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
       }
     }
     h_rigid(i) = prescribed == f.num_nodes * dim ? 1 : 0;
+    h_back(i) = -1;
+    if (type == ElementType::Line2)
+    { // 1D point face: the element's other node orients it
+      const HostPart &part = mesh.parts[size_t(f.part)];
+      const Index e = f.element - first_element[size_t(f.part)];
+      h_back(i) = part.connectivity[size_t(2 * e + (1 - f.local_face))];
+    }
     info[i] = {keyOf(chosen[i]), f.element, f.local_face, f.part};
   }
   std::sort(used.begin(), used.end());
@@ -183,6 +195,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   Kokkos::deep_copy(F.surface, h_surf);
   Kokkos::deep_copy(F.mass, h_mass);
   Kokkos::deep_copy(F.rigid, h_rigid);
+  Kokkos::deep_copy(F.back, h_back);
   Kokkos::deep_copy(F.nodes_used, h_used);
   Kokkos::deep_copy(F.params, h_params);
   return F;

@@ -158,8 +158,6 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
   std::map<std::string, int> seen;
   for (const YamlValue &item : c["surfaces"].list(1))
     spec.surfaces.push_back(parseSurface(item, names, check_sets, seen));
-  if (deck.dimension == 1)
-    c.owner().fail("contact needs dimension 2 or 3 (this deck has dimension 1)");
 }
 
 } // namespace Impl
