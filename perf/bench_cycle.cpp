@@ -21,8 +21,8 @@ void cycleBenchmark(benchmark::State &state, const std::string &scatter)
 void BM_CycleAtomic(benchmark::State &state) { cycleBenchmark(state, "atomic"); }
 void BM_CycleGather(benchmark::State &state) { cycleBenchmark(state, "gather"); }
 
-BENCHMARK(BM_CycleAtomic)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CycleGather)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CycleAtomic)->Apply(configure);
+BENCHMARK(BM_CycleGather)->Apply(configure);
 
 } // namespace
 

@@ -122,12 +122,12 @@ void BM_UpdateNodes(benchmark::State &state)
   setCounters(state, k.solver.elements().count);
 }
 
-BENCHMARK(BM_HexKernelAtomic)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_HexKernelCorners)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_GatherCornerForces)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_HexKernelGather)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ZeroForces)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_UpdateNodes)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HexKernelAtomic)->Apply(configure);
+BENCHMARK(BM_HexKernelCorners)->Apply(configure);
+BENCHMARK(BM_GatherCornerForces)->Apply(configure);
+BENCHMARK(BM_HexKernelGather)->Apply(configure);
+BENCHMARK(BM_ZeroForces)->Apply(configure);
+BENCHMARK(BM_UpdateNodes)->Apply(configure);
 
 } // namespace
 

@@ -5,15 +5,15 @@
 #   perf/run_benchmarks.sh [BUILD_DIR] [OUT_DIR]
 #
 # BUILD_DIR (default: build) must hold bin/bench_element, bin/bench_cycle and bin/scpdyn
-# (configure with -DSCPDYN_ENABLE_PERF=ON). OUT_DIR (default: perf/results) receives the JSON
-# of every benchmark, the summary.json of every run and summary.txt. Environment:
+# (configure with -DSCPDYN_ENABLE_PERF=ON). OUT_DIR (default: BUILD_DIR/perf-results) gets
+# the JSON of every benchmark, the summary.json of every run and summary.txt. Environment:
 # THREADS (default "1 2"), REPS (benchmark repetitions, default 5), RUNS (whole runs per
 # thread count and scatter, default 1), SCPDYN_BENCH_CELLS (box cells per edge, default 64),
 # SUMMARY_ONLY=1 (rebuild summary.txt from the results already in OUT_DIR).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 build=$(cd "${1:-$here/../build}" && pwd)
-out=${2:-$here/results}
+out=${2:-$build/perf-results}
 mkdir -p "$out"
 threads=${THREADS:-"1 2"}
 reps=${REPS:-5}
@@ -57,13 +57,14 @@ for t in threads:
     for b in ("bench_element", "bench_cycle"):
         with open(f"{out}/{b}_t{t}.json") as f:
             for r in json.load(f)["benchmarks"]:
-                if r.get("aggregate_name") != "median":
+                agg = r.get("aggregate_name")
+                if agg not in ("median", "min"):
                     continue
-                name = r["run_name"].replace("/real_time", "")
+                name = r["run_name"].replace("/real_time", "") + (" [min]" if agg == "min" else "")
                 scale = {"ns": 1, "us": 1e3, "ms": 1e6, "s": 1e9}[r["time_unit"]]
                 cpu = r["cpu_time"] * scale / r["elements"]
                 rows.setdefault(name, {})[t] = (r["ns_per_elem_cycle"] * 1e9, cpu)
-                if "allocs_per_cycle" in r:
+                if "allocs_per_cycle" in r and agg == "median":
                     rows.setdefault(name + " allocs/cycle", {})[t] = (r["allocs_per_cycle"], None)
     for s in ("atomic", "gather"):
         vals = []
@@ -71,7 +72,8 @@ for t in threads:
             with open(f"{out}/box64_{s}_t{t}_r{k}/summary.json") as f:
                 vals.append(json.load(f)["ns_per_element_cycle"])
         rows.setdefault(f"scpdyn box64 {s} (summary.json)", {})[t] = (statistics.median(vals), None)
-print("\nmedians, ns per element-cycle: real time (main-thread CPU time)")
+print("\nns per element-cycle: median of the repetitions ([min]: fastest), real time")
+print("(main-thread CPU time); the scpdyn rows are summary.json's ns_per_element_cycle")
 print(f"{'':42s}" + "".join(f"{t + ' thread(s)':>22s}" for t in threads))
 for name, v in rows.items():
     cells = []

@@ -24,8 +24,10 @@ E0 = 0.05  # GPa (spec 14.1 [A])
 # more than the smaller apertures; and the first cycle's dt is fixed before the CPs exist, so an
 # explicit joint closing in cycle 0 would close by v dt = 0.11 mm > a without the limit (19).
 # With GAP > 1.5 v dt the joint is found open and closes from zero force under the limit; the
-# impact happens at T_IMPACT, which the plot script subtracts.
-GAP = 0.2e-3
+# impact happens at T_IMPACT, which the plot script subtracts. GAP is two time steps of the
+# 1-mm cells at S = 0.5 (2 x 0.5 h/c x V0 = 0.2222 mm): the gap closes at a step boundary, as the
+# touching joints of bar1d.py start one (else the impact time is only known to one step).
+GAP = 2 * 0.5 * (L / 100) / 4500.0 * V0
 T_IMPACT = GAP / V0
 
 # name, option, a [m] (None: solid), cells per block, comment, extra contact keys
@@ -50,7 +52,10 @@ def fmt(x):
     return ("%.6g" % x) if abs(x) >= 1e-4 or x == 0 else ("%.6e" % x)
 
 
-def deck(name, option, a, cpb, comment, strip):
+def deck(name, option, a, cpb, comment, strip, courant=0.5, c_safe="0.5", extra_gauges=()):
+    """Deck text of one case. `courant`, `c_safe` (explicit joints: a number or "off") and
+    `extra_gauges` (x positions [m] of further velocity gauges, each at the left node of the
+    block starting there) serve the sweep of speed_accuracy.py."""
     dim = 2 if strip else 1
     nblock = 100
     bsize = L / nblock
@@ -64,10 +69,10 @@ def deck(name, option, a, cpb, comment, strip):
         "# S = 0.5, linear viscosity q = 0.3 rho c |dv| (no quadratic term), as scp-ref/bar1d.py.",
     ]
     if option:
-        head.append(f"# The impactor starts {GAP * 1e3:g} mm short of the target (impact at "
-                    f"t = {T_IMPACT * 1e6:g} us), see the script.")
+        head.append(f"# The impactor starts {GAP * 1e3:.4f} mm short of the target (impact at "
+                    f"t = {T_IMPACT * 1e6:.4f} us = 2 steps), see the script.")
         head.append(f"# Joints: a = {a * 1e3:g} mm, E0 = {E0} GPa, Emax = 1e4 E0, sigma_t = 0, "
-                    + ("C_safe = 0.5." if option == "explicit" else "no time-step limit."))
+                    + (f"C_safe = {c_safe}." if option == "explicit" else "no time-step limit."))
     if strip:
         head.append("# 2D variant: plane-strain strip one cell high, roller sides (uniaxial strain);")
         head.append("# CP forces at the POC shape functions (the penetration weights of two exactly")
@@ -79,7 +84,7 @@ def deck(name, option, a, cpb, comment, strip):
         f"title: fig2 {name}",
         f"dimension: {dim}",
         "geometry: plane_strain" if strip else None,
-        f"time: {{end: {T_END:g}, courant: 0.5"
+        f"time: {{end: {T_END:g}, courant: {courant:g}"
         + (", max_cycles: 2000}" if name == "a1e-7_explicit" else "}"),
         "output: {field_interval: 0, history_interval: 0}",
         "numerics: {bulk_viscosity: {linear: 0.3, quadratic: 0.0}"
@@ -128,18 +133,21 @@ def deck(name, option, a, cpb, comment, strip):
             f"  search_gap: {fmt(2 * GAP)}",
             "  surfaces:",
             f"    - {{name: joints, part: \"*\", option: {option}, a: {fmt(a * 1e3)}, E0: {E0}, "
-            "C: 0.0, sigma_t: 0.0" + (", C_safe: 0.5" if option == "explicit" else "")
+            "C: 0.0, sigma_t: 0.0" + (f", C_safe: {c_safe}" if option == "explicit" else "")
             + (", distribution: poc" if strip else "") + "}",
         ]
     # the gauge: the left node of the block starting at 80 mm (parts are numbered in order,
     # nodes x-fastest within a part), in the solid bar the node there; x is recorded too so that
     # the plot script can check which node the gauge reads
-    if option:
-        per_part = (cpb + 1) * (2 if strip else 1)
-        g = f"node: {round(X_GAUGE / bsize) * per_part}"
-    else:
-        g = f"point: [{fmt(X_GAUGE)}, 0.0]" if strip else f"point: [{fmt(X_GAUGE)}]"
-    out += ["gauges:", f"  - {{name: g80, {g}, quantities: [vx, x]}}"]
+    out.append("gauges:")
+    for k, xg in enumerate((X_GAUGE,) + tuple(extra_gauges)):
+        if option:
+            per_part = (cpb + 1) * (2 if strip else 1)
+            g = f"node: {round(xg / bsize) * per_part}"
+        else:
+            g = f"point: [{fmt(xg)}, 0.0]" if strip else f"point: [{fmt(xg)}]"
+        gname = "g80" if k == 0 else f"g{round(xg * 1e3)}"
+        out.append(f"  - {{name: {gname}, {g}, quantities: [vx, x]}}")
     return "\n".join(out) + "\n"
 
 

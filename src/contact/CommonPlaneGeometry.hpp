@@ -357,28 +357,42 @@ KOKKOS_INLINE_FUNCTION void pocWeights(const Real x[][3], int nn, const CpGeomet
     w[i] = sum > 0 ? w[i] / sum : 1.0 / nn;
 }
 
-/// \brief Nodal weights of the CP force on face `face` (1 or 2), section 8: node penetrations
-/// through the CP, delta_i = max(0, +-(x_i - x_poc).n), normalised (17)-(18); pocWeights() when
-/// the rule is Poc or sum(delta) <= 1e-12 h_f (8.2). Weights sum to 1. Face 1 receives
-/// -F*w_i, face 2 +F*w_j with F = Fn n + Fs.
+/// \brief Nodal weights of the CP force on face `face` (1 or 2), section 8. Rule Penetration:
+/// node penetrations through the CP, delta_i = max(0, +-(x_i - x_poc).n), (17)-(18), blended with
+/// the shape-function weights at the POC (8.2) over the length L = `blend` [m]:
+///   w_i = (delta_i + N L w_poc_i) / (sum delta + N L),   N = nn,
+/// i.e. penetration weights where the penetrations are large against L, the POC split where
+/// they are small (aligned faces), continuously in between. L = 0 gives (17)-(18) exactly.
+/// pocWeights() when the rule is Poc or sum(delta) + N L <= 1e-12 h_f (nothing penetrates).
+/// Weights sum to 1. Face 1 receives -F*w_i, face 2 +F*w_j with F = Fn n + Fs.
+///
+/// Why the blend: nodes penetrating by delta +- e get extra forces -+F e/(sum delta): a spring of
+/// stiffness F/(sum delta) on the face's rotation (zigzag) mode, seen by neither the implicit
+/// update nor the limit (19). For a stiff joint (closure ~ 1e-7 m at GPa) it exceeds the
+/// leapfrog's bound k dt^2/m <= 4 by orders of magnitude and the mode grows ~1000x per cycle.
+/// The blend caps the stiffness at F/(N L); the runtime uses L = dt^2 |F|/(2 m*)
+/// (ContactForces.cpp; docs/theory.md, contact runtime, item 13).
 KOKKOS_INLINE_FUNCTION void nodalWeights(const Real x[][3], int nn, const CpGeometry &g, int face,
-                                         DistributionRule rule, Real w[])
+                                         DistributionRule rule, Real w[], Real blend = 0)
 {
   using namespace ContactMath;
   if (rule == DistributionRule::Penetration)
   {
     const Real sign = face == 1 ? 1.0 : -1.0;
-    Real sum = 0;
+    Real delta[kMaxFaceNodes], sum = 0;
     for (int i = 0; i < nn; ++i)
     {
       const Real d[3] = {x[i][0] - g.x_poc[0], x[i][1] - g.x_poc[1], x[i][2] - g.x_poc[2]};
-      w[i] = max(0.0, sign * dot(d, g.n));
-      sum += w[i];
+      delta[i] = max(0.0, sign * dot(d, g.n));
+      sum += delta[i];
     }
-    if (sum > 1e-12 * (face == 1 ? g.h1 : g.h2))
+    const Real L = nn * max(blend, 0.0);
+    if (sum + L > 1e-12 * (face == 1 ? g.h1 : g.h2))
     {
+      if (L > 0)
+        pocWeights(x, nn, g, w);
       for (int i = 0; i < nn; ++i)
-        w[i] /= sum;
+        w[i] = (delta[i] + (L > 0 ? L * w[i] : 0.0)) / (sum + L);
       return;
     }
   }

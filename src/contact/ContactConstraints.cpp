@@ -107,6 +107,8 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
         {
           const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
           const Real sign = side == 0 ? -1.0 : 1.0;
+          if (F.ghost(f))
+            continue; // its own rank adds this side
           for (int a = 0; a < F.num_nodes(f); ++a)
           {
             const Index k = F.nodes(f, a);
@@ -117,6 +119,8 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
           }
         }
       });
+  if (_comm.sum_nodes) // every copy of a node sees the increments of every rank's CPs
+    _comm.sum_nodes(dv);
 }
 
 int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
@@ -137,16 +141,19 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
         project(cp, p, mode(p), dim, r);
         tieDiagonal(F, cp, p, mass, bc, dt, dim, D, Dn);
         precondition(cp, p, mode(p), D, Dn, r, z);
+        const bool counted = ownsPlane(F, cp, p); // a cross-rank CP counts once
         for (int d = 0; d < 3; ++d)
         {
           X(p, d) = 0;
           R(p, d) = r[d];
           Z(p, d) = z[d];
           Pv(p, d) = z[d];
-          sum += r[d] * z[d];
+          if (counted)
+            sum += r[d] * z[d];
         }
       },
       rz);
+  rz = globalSum(rz);
   const Real rz0 = rz;
   int it = 0;
   for (; it < _passes && rz > 1e-20 * rz0 && rz > 0; ++it)
@@ -162,13 +169,16 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
           for (int d = 0; d < 3; ++d)
             ap[d] = V2[d] - V1[d]; // (A p)_c: the relative velocity the forces p remove
           project(cp, p, mode(p), dim, ap);
+          const bool counted = ownsPlane(F, cp, p);
           for (int d = 0; d < 3; ++d)
           {
             AP(p, d) = ap[d];
-            sum += Pv(p, d) * ap[d];
+            if (counted)
+              sum += Pv(p, d) * ap[d];
           }
         },
         pap);
+    pap = globalSum(pap);
     if (!(pap > 0))
       break;
     const Real alpha = rz / pap;
@@ -185,13 +195,16 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
           }
           tieDiagonal(F, cp, p, mass, bc, dt, dim, D, Dn);
           precondition(cp, p, mode(p), D, Dn, r, z);
+          const bool counted = ownsPlane(F, cp, p);
           for (int d = 0; d < 3; ++d)
           {
             Z(p, d) = z[d];
-            sum += r[d] * z[d];
+            if (counted)
+              sum += r[d] * z[d];
           }
         },
         rz_new);
+    rz_new = globalSum(rz_new);
     const Real beta = rz_new / rz;
     rz = rz_new;
     Kokkos::parallel_for(
@@ -227,14 +240,22 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   auto mode = _tie_mode;
   const int dim = _dim;
   const Index nused = Index(used.extent(0));
-  // the joint CPs' forces are part of what the constraints see
+  // the joint CPs' forces are part of what the constraints see; decomposed: their totals over
+  // the ranks (fc holds this rank's faces only), summed in a copy so step 10b still sums parts
+  VectorView joint = fc;
+  if (_comm.sum_nodes)
+  {
+    Kokkos::deep_copy(dv, fc);
+    _comm.sum_nodes(dv);
+    joint = dv;
+  }
   Kokkos::parallel_for(
       "scpdyn::contact::vstarJoints", Kokkos::RangePolicy<ExecSpace>(0, nused),
       KOKKOS_LAMBDA(const Index i) {
         const Index k = used(i);
         for (int d = 0; d < dim; ++d)
           if (bc(k, d) < 0)
-            vstar(k, d) += dt * fc(k, d) / mass(k);
+            vstar(k, d) += dt * joint(k, d) / mass(k);
       });
   // targets b: the relative velocity to remove (sticky), or the normal approach beyond the gap
   // (slide line); slide lines start active where they approach
@@ -294,7 +315,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
           }
         },
         changed);
-    if (changed == 0)
+    if (globalSum(Real(changed)) == 0)
       break;
   }
   // apply the forces: contact force, v*, CP totals

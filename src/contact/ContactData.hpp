@@ -26,6 +26,12 @@ struct ContactFaceData
   /// 1D only: the other node of the element behind the (point) face, which orients the face
   /// normal (4.1 in 1D); -1 in 2D and 3D
   IndexView back;
+  // Decomposed runs (issue 4): the faces of this rank and its ghost faces (faces of other
+  // ranks near its own, ascending key among them); a ghost face's element is -2 - its global
+  // element id, its nodes may be ghost nodes (numbered after the local nodes).
+  DeviceView<long *> key;   ///< global face key (3.5)
+  IndexView ghost;          ///< 1 for a ghost face: no force is applied to its nodes here
+  RealView density;         ///< ghost faces: density of the element behind [kg/m^3] (19)
 };
 
 /// \brief Host description of a contact face, for messages and outputs.
@@ -43,6 +49,7 @@ struct CommonPlaneData
 {
   Index count = 0;
   IndexView face1, face2;
+  DeviceView<long *> key1, key2; ///< global keys of the faces: the CP's identity across searches
   DeviceView<CpState *> state;   ///< history (section 12)
   DeviceView<JointParams *> params; ///< averaged parameters of the two faces (3.6)
   // per cycle

@@ -1,6 +1,7 @@
 // Step 9 of the cycle for every CP (scp-method.md Appendix A): half-step geometry (A-D), the
 // option's force (E) and its distribution to the face nodes, the correction passes of the
-// velocity-constraint options (10.8), the checks, the contact energy and the time-step limit (19).
+// velocity-constraint options (10.8) and the time-step limit (19). The checks and the contact
+// energy are in ContactChecks.cpp.
 #include "contact/ContactSystem.hpp"
 #include "contact/ContactKernels.hpp"
 #include "contact/JointConstraints.hpp"
@@ -95,11 +96,15 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
         // the POC (8.2); otherwise the weights flip between nodes and drive the relative
         // zigzag mode of the two faces, which the face-average constraint cannot see.
         const DistributionRule rule = isConstraint(P.option) ? DistributionRule::Poc : P.distribution;
+        // blend length of the penetration weights (8.1, CommonPlaneGeometry.hpp): the relative
+        // displacement the last force gives the reduced mass in one step from rest
+        const Real F_old = kmath::sqrt(s.Fn * s.Fn + ContactMath::dot(s.Fs, s.Fs));
+        const Real blend = 0.5 * dt * dt * F_old / mstar;
         Real w[kMaxFaceNodes];
-        nodalWeights(x1, F.num_nodes(f1), g, 1, rule, w);
+        nodalWeights(x1, F.num_nodes(f1), g, 1, rule, w, blend);
         for (int a = 0; a < kMaxFaceNodes; ++a)
           cp.w1(p, a) = a < F.num_nodes(f1) ? w[a] : 0;
-        nodalWeights(x2, F.num_nodes(f2), g, 2, rule, w);
+        nodalWeights(x2, F.num_nodes(f2), g, 2, rule, w, blend);
         for (int a = 0; a < kMaxFaceNodes; ++a)
           cp.w2(p, a) = a < F.num_nodes(f2) ? w[a] : 0;
         cp.status(p) = CpStick;
@@ -161,94 +166,12 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
       });
 }
 
-ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycle, Real time)
-{
-  ContactFailure failure;
-  const CommonPlaneData cp = _cp;
-  Index bad = cp.count;
-  Kokkos::parallel_reduce(
-      "scpdyn::contact::check", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-      KOKKOS_LAMBDA(const Index p, Index &first) {
-        const JointParams &P = cp.params(p);
-        bool ok = true;
-        for (int d = 0; d < 3; ++d)
-        {
-          const Real f = cp.force(p, d);
-          ok = ok && f - f == 0; // false for NaN and infinity
-        }
-        if (!isConstraint(P.option) && cp.status(p) != CpInactive && !(cp.state(p).u <= P.a))
-          ok = false; // closure past the aperture: diverging (or loaded beyond ~200 E0)
-        if (!ok && p < first)
-          first = p;
-      },
-      Kokkos::Min<Index>(bad));
-  if (bad < cp.count)
-  {
-    auto state = Kokkos::create_mirror_view_and_copy(HostSpace(), Kokkos::subview(cp.state, bad));
-    auto params = Kokkos::create_mirror_view_and_copy(HostSpace(), Kokkos::subview(cp.params, bad));
-    auto force = Kokkos::create_mirror_view_and_copy(HostSpace(), cp.force);
-    auto area = Kokkos::create_mirror_view_and_copy(HostSpace(), cp.area);
-    const CpState &s = state();
-    const JointParams &P = params();
-    std::ostringstream os;
-    os.precision(4);
-    os << "contact diverged at cycle " << cycle << ", time " << time << " s (dt " << dt << " s): "
-       << describe(bad);
-    const bool finite = std::isfinite(force(bad, 0)) && std::isfinite(force(bad, 1)) &&
-                        std::isfinite(force(bad, 2));
-    if (!finite)
-      os << " has a non-finite force";
-    else
-      os << ": closure u = " << s.u << " m passed the aperture a = " << P.a
-         << " m (normal stress " << s.Fn / (area(bad) > 0 ? area(bad) : 1.0) << " Pa)";
-    if (P.option == ContactOption::Explicit)
-      os << "; the explicit contact is unstable at this time step"
-         << (P.C_safe > 1e30 ? " with its limit switched off (C_safe: off): set C_safe (0.5) or "
-                               "reduce time.courant"
-                             : ": reduce C_safe or time.courant");
-    else
-      os << "; the joint is loaded beyond its law's range: check E0, a and Emax";
-    failure.failed = true;
-    failure.message = os.str();
-    // the outputs written after a failure keep the last finite CP state
-    Kokkos::deep_copy(cp.state, _state_before);
-    return failure;
-  }
-
-  // apply: contact forces are internal to the system (f_int); their work, booked on the
-  // leapfrog's own terms 1/2 v^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}) like the external work,
-  // is the contact energy, so the energy balance closes with contact = stored + dissipated
-  auto used = _faces.nodes_used;
-  auto v = nodes.v, f_int = nodes.f_int, fc = _fc, impulse = _impulse;
-  const int dim = _dim;
-  Real work = 0;
-  Kokkos::parallel_reduce(
-      "scpdyn::contact::apply", Kokkos::RangePolicy<ExecSpace>(0, Index(used.extent(0))),
-      KOKKOS_LAMBDA(const Index i, Real &w) {
-        const Index k = used(i);
-        for (int d = 0; d < dim; ++d)
-        {
-          f_int(k, d) += fc(k, d);
-          const Real I = fc(k, d) * dt;
-          w -= 0.5 * v(k, d) * (I + impulse(k, d));
-          impulse(k, d) = I;
-        }
-      },
-      work);
-  _work += work;
-  Real stored = 0;
-  auto st = cp.stored;
-  Kokkos::parallel_reduce(
-      "scpdyn::contact::stored", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-      KOKKOS_LAMBDA(const Index p, Real &s) { s += st(p); }, stored);
-  _stored = stored;
-  return failure;
-}
-
 ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const BoundaryConditions &bc,
                                             Real dt, long cycle, Real time)
 {
-  if (_faces.count == 0)
+  // decomposed: every rank takes every collective step, with or without faces and CPs
+  const bool decomposed = bool(_comm.sum);
+  if (_faces.count == 0 && !decomposed)
     return ContactFailure();
   if (searchDue(cycle))
   {
@@ -260,7 +183,7 @@ ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const Bound
   if (_state_before.extent(0) != _cp.state.extent(0))
     _state_before = DeviceView<CpState *>("cp_state_before", _cp.state.extent(0));
   Kokkos::deep_copy(_state_before, _cp.state);
-  if (_cp.count > 0)
+  if (_cp.count > 0 || decomposed)
   {
     jointForces(nodes, dt);
     if (_has_constraints)
@@ -293,7 +216,10 @@ Real ContactSystem::stableTimeStep(const NodeFields &nodes, const ElementFields 
         const Real mu = arealReducedMass(F.mass(f1), cp.face_area1(p), F.rigid(f1) != 0,
                                          F.mass(f2), cp.face_area2(p), F.rigid(f2) != 0);
         const Index e1 = F.element(f1), e2 = F.element(f2);
-        const Real rho = 0.5 * (emass(e1) / volume(e1) + emass(e2) / volume(e2));
+        // a ghost face's element is on another rank, which sent its density (step 8)
+        const Real rho1 = e1 >= 0 ? emass(e1) / volume(e1) : F.density(f1);
+        const Real rho2 = e2 >= 0 ? emass(e2) / volume(e2) : F.density(f2);
+        const Real rho = 0.5 * (rho1 + rho2);
         const Real dt_c = contactTimeStep(P, cp.state(p), Vn, dt_element, mu, rho);
         m = dt_c < m ? dt_c : m;
       },

@@ -60,7 +60,8 @@ KOKKOS_INLINE_FUNCTION void cpVelocities(const ContactFaceData &F, const CommonP
 }
 
 /// (17)-(18): -w1 F on the nodes of face 1, +w2 F on face 2; with `dv`, also the velocity
-/// change dt F w / M of every node component that is not prescribed.
+/// change dt F w / M of every node component that is not prescribed. A ghost face gets nothing:
+/// its own rank computes the same CP and applies that side (parallel rules of 2.2).
 KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonPlaneData &cp,
                                          Index p, const Real Fv[3], const VectorView &fc,
                                          const VectorView &dv, const RealView &mass,
@@ -70,6 +71,8 @@ KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonP
   {
     const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
     const Real sign = side == 0 ? -1.0 : 1.0;
+    if (F.ghost(f))
+      continue;
     for (int a = 0; a < F.num_nodes(f); ++a)
     {
       const Index k = F.nodes(f, a);
@@ -82,6 +85,13 @@ KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonP
       }
     }
   }
+}
+
+/// True on the one rank that counts CP p in sums over CPs (energies, dot products, outputs):
+/// the rank of face 1 (the face with the smaller key); every CP in serial.
+KOKKOS_INLINE_FUNCTION bool ownsPlane(const ContactFaceData &F, const CommonPlaneData &cp, Index p)
+{
+  return F.ghost(cp.face1(p)) == 0;
 }
 
 } // namespace ContactKernels

@@ -1,5 +1,6 @@
 // Common-plane detection: face geometry, sorting bins, candidate pairs (scp-method.md 3.1-3.2).
 #include "contact/ContactSearch.hpp"
+#include "contact/ContactChecks.hpp"
 
 #include <cmath>
 
@@ -62,7 +63,8 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const ContactFaceData &F, const FaceGeom
                                         const VectorView &x, const VectorView &v, Real half_dt,
                                         int dim, bool axisym, Real g_search, Index i, Index j)
 {
-  if (!G.valid(i) || !G.valid(j) || F.element(i) == F.element(j))
+  // ghost-ghost pairs belong to other ranks (2.2, parallel rules)
+  if (!G.valid(i) || !G.valid(j) || F.element(i) == F.element(j) || (F.ghost(i) && F.ghost(j)))
     return false;
   Real nn = 0, side_i = 0, side_j = 0;
   for (int d = 0; d < 3; ++d)
@@ -76,7 +78,11 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const ContactFaceData &F, const FaceGeom
   // sign of n_f.n_g with round-off and would get a CP at 45 degrees
   if (!(nn < kOpposingNormals))
     return false;
-  const Real delta = 0.5 * ContactMath::min(G.diameter(i), G.diameter(j));
+  // rule 5: a joint closes by up to its aperture (beyond it under the cap, 6.2); with half a
+  // face alone as the margin, a joint closed by more than h/2 (fine mesh, soft joint) loses its
+  // CP at the next search and the blocks pass through each other
+  const Real a = averageParams(F.params(F.surface(i)), F.params(F.surface(j))).a;
+  const Real delta = candidatePenetration(G.diameter(i), G.diameter(j), a);
   if (!(side_i > -delta && side_j > -delta) || shareNode(F, i, j))
     return false;
   Real x1[kMaxFaceNodes][3], x2[kMaxFaceNodes][3];

@@ -92,7 +92,8 @@ void sortFacesIntoBins(const FaceGeometryData &G, Index num_faces, int dim, Real
 
 /// \brief Candidate pairs of 3.2 among faces in the same or neighbouring bins (3^dim stencil):
 /// opposing normals, different elements, no shared node, each face on the right side of the
-/// other (within half the smaller face size), gap -u0 <= g_search, and overlap
+/// other (within candidatePenetration(): half the smaller face plus the closure the divergence
+/// check accepts), gap -u0 <= g_search, and overlap
 /// Ac > eps_A min(A1, A2) at the half step.
 CandidatePairs findCandidatePairs(const ContactFaceData &F, const FaceGeometryData &G,
                                   const FaceBins &bins, const NodeFields &nodes, Real dt, int dim,

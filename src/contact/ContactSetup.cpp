@@ -25,6 +25,11 @@ bool partMatches(const std::string &part_name, const std::string &pattern)
           part_name[pattern.size()] == '.');
 }
 
+long long globalCount(const ContactMeshInput &in, size_t count)
+{
+  return in.global_count ? in.global_count((long long)count) : (long long)count;
+}
+
 std::array<Index, kMaxFaceNodes> sortedNodes(const HostFace &f)
 {
   std::array<Index, kMaxFaceNodes> s = f.nodes; // unused slots are -1 and sort first
@@ -92,7 +97,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
       for (size_t k = 0; k < external.size(); ++k)
         if (partMatches(mesh.parts[size_t(external[k].part)].name, spec.part))
           take(k);
-      if (selected == 0)
+      if (globalCount(in, selected) == 0)
         throw InputError(key + ".part: no external face belongs to a part matching '" + spec.part +
                          "'");
     }
@@ -109,7 +114,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
                            "' holds a face that is not an external element face");
         take(e->second);
       }
-      if (selected == 0)
+      if (globalCount(in, selected) == 0)
         throw InputError(key + ".face_set: face set '" + spec.face_set + "' is empty");
     }
   }
@@ -118,7 +123,12 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   for (size_t k = 0; k < external.size(); ++k)
     if (surface_of[k] >= 0)
       chosen.push_back(k);
-  auto keyOf = [&](size_t k) { return long(external[k].element) * 8 + external[k].local_face; };
+  auto globalElement = [&](Index e) {
+    return in.global_element ? (*in.global_element)[size_t(e)] : e;
+  };
+  auto keyOf = [&](size_t k) {
+    return long(globalElement(external[k].element)) * 8 + external[k].local_face;
+  };
   std::sort(chosen.begin(), chosen.end(), [&](size_t a, size_t b) { return keyOf(a) < keyOf(b); });
 
   ContactFaceData F;
@@ -131,6 +141,10 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   F.mass = RealView("contact_face_mass", nf);
   F.rigid = IndexView("contact_face_rigid", nf);
   F.back = IndexView("contact_face_back", nf);
+  F.key = DeviceView<long *>("contact_face_key", nf);
+  F.ghost = IndexView("contact_face_ghost", nf);
+  F.density = RealView("contact_face_density", nf);
+  auto h_key = Kokkos::create_mirror_view(F.key);
   auto h_nodes = Kokkos::create_mirror_view(F.nodes);
   auto h_nn = Kokkos::create_mirror_view(F.num_nodes);
   auto h_el = Kokkos::create_mirror_view(F.element);
@@ -175,7 +189,8 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
       const Index e = f.element - first_element[size_t(f.part)];
       h_back(i) = part.connectivity[size_t(2 * e + (1 - f.local_face))];
     }
-    info[i] = {keyOf(chosen[i]), f.element, f.local_face, f.part};
+    h_key(i) = keyOf(chosen[i]);
+    info[i] = {keyOf(chosen[i]), globalElement(f.element), f.local_face, f.part};
   }
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
@@ -196,6 +211,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   Kokkos::deep_copy(F.mass, h_mass);
   Kokkos::deep_copy(F.rigid, h_rigid);
   Kokkos::deep_copy(F.back, h_back);
+  Kokkos::deep_copy(F.key, h_key);
   Kokkos::deep_copy(F.nodes_used, h_used);
   Kokkos::deep_copy(F.params, h_params);
   return F;

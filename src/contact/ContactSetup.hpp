@@ -7,6 +7,7 @@
 #include "input/Deck.hpp"
 #include "mesh/HostMesh.hpp"
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -28,6 +29,10 @@ struct ContactMeshInput
   const std::vector<Index> *host_to_device_element = nullptr;
   NodeFields nodes;     ///< mass and velocity-BC flags are read
   ElementFields elems;  ///< element masses are read
+  /// Decomposed runs: global id of every mesh element (face keys are global), and the global
+  /// sum of a count (a surface must select faces on some rank, not on every one).
+  const std::vector<Index> *global_element = nullptr;
+  std::function<long long(long long)> global_count;
 };
 
 /// \brief The contact faces of every surface of the deck, in ascending global key, on device;

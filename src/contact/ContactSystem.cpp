@@ -1,6 +1,9 @@
 // Contact runtime: set-up, detection with history matching, outputs (scp-method.md 3, 12).
 // The per-cycle force kernels are in ContactForces.cpp.
 #include "contact/ContactSystem.hpp"
+#include "contact/ContactKernels.hpp"
+
+#include "parallel/GhostFaces.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,9 +14,11 @@ namespace scpdyn
 namespace
 {
 
-/// Index of the pair (f1, f2) in the sorted CP list, or -1 (3.3: the face-pair key is the match).
-KOKKOS_INLINE_FUNCTION Index findPair(const IndexView &a1, const IndexView &a2, Index n, Index f1,
-                                      Index f2)
+/// Index of the pair (k1, k2) of face keys in the sorted CP list, or -1 (3.3: the face-pair key
+/// is the match; keys, not face indices, because a decomposed run's face list changes with its
+/// ghost faces from one search to the next).
+KOKKOS_INLINE_FUNCTION Index findPair(const DeviceView<long *> &a1, const DeviceView<long *> &a2,
+                                      Index n, long f1, long f2)
 {
   Index lo = 0, hi = n;
   while (lo < hi)
@@ -35,6 +40,8 @@ CommonPlaneData allocatePlanes(Index n)
   c.count = n;
   c.face1 = IndexView("cp_face1", m);
   c.face2 = IndexView("cp_face2", m);
+  c.key1 = DeviceView<long *>("cp_key1", m);
+  c.key2 = DeviceView<long *>("cp_key2", m);
   c.state = DeviceView<CpState *>("cp_state", m);
   c.params = DeviceView<JointParams *>("cp_params", m);
   c.normal = VectorView("cp_normal", m);
@@ -64,6 +71,9 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   for (const auto &p : in.mesh->parts)
     _part_names.push_back(p.name);
   _faces = buildContactFaces(in, _info);
+  _own = _faces;
+  _own_info = _info;
+  _ghost_of_face.assign(_info.size(), -1);
   for (size_t s = 0; s < deck.contact.surfaces.size(); ++s)
   {
     const std::string &o = deck.contact.surfaces[s].option;
@@ -87,9 +97,11 @@ bool ContactSystem::searchDue(long cycle) const
 
 void ContactSystem::sortIntoBins(const NodeFields &nodes, Real dt, long cycle)
 {
-  if (!searchDue(cycle) || _faces.count == 0)
+  if (!searchDue(cycle) || (_faces.count == 0 && !_comm.max))
     return;
   computeFaceGeometry(_faces, nodes, dt, _dim, _axisym, _geom);
+  if (_comm.max) // the search distance g_search = h_max must not depend on the decomposition
+    _geom.h_max = _comm.max(std::max(_geom.h_max, 0.0));
   const Real gap = _search_gap > 0 ? _search_gap : _geom.h_max;
   // (3.2) every pair with overlap and gap <= g_search lies in the same or a neighbouring bin
   sortFacesIntoBins(_geom, _faces.count, _dim, std::max(2.0 * _geom.h_max, _geom.h_max + gap),
@@ -115,8 +127,10 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
         const Index f1 = P.face1(q), f2 = P.face2(q);
         cp.face1(q) = f1;
         cp.face2(q) = f2;
+        cp.key1(q) = F.key(f1);
+        cp.key2(q) = F.key(f2);
         cp.params(q) = averageParams(F.params(F.surface(f1)), F.params(F.surface(f2)));
-        const Index o = findPair(old.face1, old.face2, old.count, f1, f2);
+        const Index o = findPair(old.key1, old.key2, old.count, F.key(f1), F.key(f2));
         if (o >= 0)
         { // (3.3) the same face pair keeps its CP and history
           cp.state(q) = old.state(o);
@@ -124,10 +138,202 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
         }
         Real x1[kMaxFaceNodes][3], x2[kMaxFaceNodes][3];
         const CpGeometry g = pairGeometry(F, f1, f2, x, v, half_dt, dim, axisym, x1, x2);
-        cp.state(q) = initialCpState(g.u0, g.n, g.Ac); // (12), (D12)
+        // (D7) at x^n, not at the half step: the step's closure increment (7) or (20) takes
+        // u from the start to the end of the step, so the half-step overlap would count
+        // Vn dt/2 twice (see docs/theory.md, contact runtime)
+        const CpGeometry g0 = pairGeometry(F, f1, f2, x, v, 0.0, dim, axisym, x1, x2);
+        Real u0 = g0.u0;
+        if (!g0.valid)
+        {
+          Real V1[3], V2[3], Vn = 0;
+          ContactKernels::faceVelocity(F, f1, v, V1);
+          ContactKernels::faceVelocity(F, f2, v, V2);
+          for (int d = 0; d < 3; ++d)
+            Vn += (V1[d] - V2[d]) * g.n[d];
+          u0 = g.u0 - half_dt * Vn;
+        }
+        cp.state(q) = initialCpState(u0, g.n, g.Ac); // (12), (D12)
       });
   _cp = cp;
-  _max_count = std::max(_max_count, _cp.count);
+  Index owned = cp.count;
+  if (_comm.sum)
+  {
+    Kokkos::parallel_reduce(
+        "scpdyn::contact::ownedPlanes", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+        KOKKOS_LAMBDA(const Index q, Index &n) { n += F.ghost(cp.face1(q)) == 0 ? 1 : 0; }, owned);
+    owned = Index(globalSum(Real(owned)));
+  }
+  _max_count = std::max(_max_count, owned);
+}
+
+Real ContactSystem::globalSum(Real local) const
+{
+  if (_comm.sum)
+    _comm.sum(&local, 1);
+  return local;
+}
+
+void ContactSystem::setComm(const ContactComm &comm) { _comm = comm; }
+
+void ContactSystem::resizeNodeArrays(size_t n)
+{
+  if (_vstar.extent(0) == n)
+    return;
+  // local nodes keep their ids; only the impulse carries over (the others are per cycle)
+  VectorView impulse("contact_impulse", n);
+  const size_t keep = std::min(n, size_t(_impulse.extent(0)));
+  Kokkos::deep_copy(Kokkos::subview(impulse, std::make_pair(size_t(0), keep), Kokkos::ALL),
+                    Kokkos::subview(_impulse, std::make_pair(size_t(0), keep), Kokkos::ALL));
+  _impulse = impulse;
+  _vstar = VectorView("contact_vstar", n);
+  _dv = VectorView("contact_dv", n);
+  _fc = VectorView("contact_force", n);
+}
+
+std::vector<GhostFaceDesc> ContactSystem::ownFaces() const
+{
+  auto nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.nodes);
+  auto nn = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.num_nodes);
+  auto surface = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.surface);
+  auto mass = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.mass);
+  auto rigid = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.rigid);
+  auto back = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.back);
+  std::vector<GhostFaceDesc> out(size_t(_own.count));
+  for (Index f = 0; f < _own.count; ++f)
+  {
+    GhostFaceDesc &g = out[size_t(f)];
+    g.key = _own_info[size_t(f)].key;
+    g.part = _own_info[size_t(f)].part;
+    g.surface = surface(f);
+    g.num_nodes = nn(f);
+    g.rigid = rigid(f);
+    g.mass = mass(f);
+    for (int a = 0; a < kMaxFaceNodes; ++a)
+      g.nodes[a] = nodes(f, a);
+    g.back = back(f);
+  }
+  return out;
+}
+
+void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Index node_count,
+                                  const std::vector<Index> &shared_nodes)
+{
+  // merge this rank's faces and the ghosts by key: the ascending-key order of 3.5, so face 1
+  // of a CP is the same face on every rank that computes it
+  const std::vector<GhostFaceDesc> own = ownFaces();
+  auto own_element = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.element);
+  const size_t n = own.size() + ghosts.size();
+  ContactFaceData F;
+  F.count = Index(n);
+  F.params = _own.params;
+  F.nodes = DeviceView<Index * [kMaxFaceNodes]>("contact_face_nodes", n);
+  F.num_nodes = IndexView("contact_face_num_nodes", n);
+  F.element = IndexView("contact_face_element", n);
+  F.surface = IndexView("contact_face_surface", n);
+  F.mass = RealView("contact_face_mass", n);
+  F.rigid = IndexView("contact_face_rigid", n);
+  F.back = IndexView("contact_face_back", n);
+  F.key = DeviceView<long *>("contact_face_key", n);
+  F.ghost = IndexView("contact_face_ghost", n);
+  F.density = RealView("contact_face_density", n);
+  auto h_nodes = Kokkos::create_mirror_view(F.nodes);
+  auto h_nn = Kokkos::create_mirror_view(F.num_nodes);
+  auto h_el = Kokkos::create_mirror_view(F.element);
+  auto h_surf = Kokkos::create_mirror_view(F.surface);
+  auto h_mass = Kokkos::create_mirror_view(F.mass);
+  auto h_rigid = Kokkos::create_mirror_view(F.rigid);
+  auto h_back = Kokkos::create_mirror_view(F.back);
+  auto h_key = Kokkos::create_mirror_view(F.key);
+  auto h_ghost = Kokkos::create_mirror_view(F.ghost);
+  _info.assign(n, ContactFaceInfo());
+  _ghost_of_face.assign(n, -1);
+  std::vector<Index> used = shared_nodes;
+  size_t i = 0, j = 0;
+  for (size_t f = 0; f < n; ++f)
+  {
+    const bool take_own = j == ghosts.size() || (i < own.size() && own[i].key < ghosts[j].key);
+    const GhostFaceDesc &g = take_own ? own[i] : ghosts[j];
+    h_nn(f) = g.num_nodes;
+    h_surf(f) = g.surface;
+    h_mass(f) = g.mass;
+    h_rigid(f) = g.rigid;
+    h_back(f) = g.back;
+    h_key(f) = g.key;
+    h_ghost(f) = take_own ? 0 : 1;
+    for (int a = 0; a < kMaxFaceNodes; ++a)
+    {
+      h_nodes(f, a) = a < g.num_nodes ? g.nodes[a] : -1;
+      if (a < g.num_nodes)
+        used.push_back(g.nodes[a]);
+    }
+    if (take_own)
+    {
+      h_el(f) = own_element(Index(i));
+      _info[f] = _own_info[i++];
+    }
+    else
+    {
+      h_el(f) = Index(-2 - g.key / 8);
+      _info[f] = {g.key, Index(g.key / 8), int(g.key % 8), g.part};
+      _ghost_of_face[f] = Index(j++);
+    }
+  }
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  F.nodes_used = IndexView("contact_nodes", used.size());
+  auto h_used = Kokkos::create_mirror_view(F.nodes_used);
+  for (size_t k = 0; k < used.size(); ++k)
+    h_used(k) = used[k];
+  Kokkos::deep_copy(F.nodes, h_nodes);
+  Kokkos::deep_copy(F.num_nodes, h_nn);
+  Kokkos::deep_copy(F.element, h_el);
+  Kokkos::deep_copy(F.surface, h_surf);
+  Kokkos::deep_copy(F.mass, h_mass);
+  Kokkos::deep_copy(F.rigid, h_rigid);
+  Kokkos::deep_copy(F.back, h_back);
+  Kokkos::deep_copy(F.key, h_key);
+  Kokkos::deep_copy(F.ghost, h_ghost);
+  Kokkos::deep_copy(F.nodes_used, h_used);
+  _faces = F;
+  resizeNodeArrays(size_t(node_count));
+}
+
+std::vector<char> ContactSystem::ghostFacesInPlanes() const
+{
+  size_t ghosts = 0;
+  for (Index g : _ghost_of_face)
+    ghosts += g >= 0 ? 1 : 0;
+  std::vector<char> used(ghosts, 0);
+  auto f1 = Kokkos::create_mirror_view_and_copy(HostSpace(), _cp.face1);
+  auto f2 = Kokkos::create_mirror_view_and_copy(HostSpace(), _cp.face2);
+  for (Index p = 0; p < _cp.count; ++p)
+    for (Index f : {f1(p), f2(p)})
+      if (_ghost_of_face[size_t(f)] >= 0)
+        used[size_t(_ghost_of_face[size_t(f)])] = 1;
+  return used;
+}
+
+std::vector<Real> ContactSystem::ownFaceDensity(const ElementFields &elements) const
+{
+  RealView rho("contact_own_density", size_t(_own.count));
+  auto element = _own.element;
+  auto mass = elements.mass, volume = elements.volume;
+  Kokkos::parallel_for(
+      "scpdyn::contact::ownDensity", Kokkos::RangePolicy<ExecSpace>(0, _own.count),
+      KOKKOS_LAMBDA(const Index f) { rho(f) = mass(element(f)) / volume(element(f)); });
+  auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), rho);
+  return std::vector<Real>(h.data(), h.data() + _own.count);
+}
+
+void ContactSystem::setGhostDensity(const std::vector<Real> &density)
+{
+  auto h = Kokkos::create_mirror_view(_faces.density);
+  for (Index f = 0; f < _faces.count; ++f)
+  {
+    const Index g = _ghost_of_face[size_t(f)];
+    h(f) = g >= 0 ? density[size_t(g)] : 0.0;
+  }
+  Kokkos::deep_copy(_faces.density, h);
 }
 
 ContactPointsHost ContactSystem::points() const
@@ -143,6 +349,8 @@ ContactPointsHost ContactSystem::points() const
   auto f2 = Kokkos::create_mirror_view_and_copy(HostSpace(), _cp.face2);
   for (size_t p = 0; p < n; ++p)
   {
+    if (_ghost_of_face[size_t(f1(p))] >= 0)
+      continue; // the rank of face 1 reports it
     for (int d = 0; d < 3; ++d)
       h.poc.push_back(poc(p, d));
     const CpState &s = state(p);

@@ -9,11 +9,26 @@
 #include "contact/ContactSearch.hpp"
 #include "contact/ContactSetup.hpp"
 
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace scpdyn
 {
+
+struct GhostFaceDesc;
+
+/// \brief What the contact of a decomposed run needs from the communication layer (issue 4);
+/// empty members on one rank.
+struct ContactComm
+{
+  /// Sum a nodal vector over the copies of every shared node, then copy the owners' values to
+  /// the ghost nodes (the constraint solve's velocity increments).
+  std::function<void(const VectorView &)> sum_nodes;
+  /// Global sums (added in rank order, the same bits on every rank) and maximum.
+  std::function<void(Real *, int)> sum;
+  std::function<Real(Real)> max;
+};
 
 /// \brief Host copy of the live CPs for output (one point per CP).
 struct ContactPointsHost
@@ -46,9 +61,10 @@ public:
   /// \brief Step 3: on search cycles, half-step face geometry and sorting bins.
   void sortIntoBins(const NodeFields &nodes, Real dt, long cycle);
   /// \brief Step 9: detection on search cycles, then every CP's force (sub-steps A-E), scattered
-  /// atomically to a contact-force field and added to nodes.f_int. Returns a failure naming the
-  /// CP when a force is not finite or a joint's closure passes its aperture; the forces are then
-  /// not applied and the CP histories are restored.
+  /// atomically to a contact-force field and added to nodes.f_int. Returns a failure naming a
+  /// CP when the contact diverged (contact/ContactChecks.hpp: a non-finite force or history, a
+  /// joint closure past 2 apertures, energy created); the forces are then not applied and the
+  /// CP histories are restored.
   ContactFailure computeForces(const NodeFields &nodes, const BoundaryConditions &bc, Real dt,
                                long cycle, Real time);
   /// \brief Step 12: smallest explicit-contact time step (19) over the active explicit CPs, from
@@ -56,6 +72,30 @@ public:
   /// when no explicit CP limits.
   Real stableTimeStep(const NodeFields &nodes, const ElementFields &elements,
                       Real dt_element) const;
+
+  // Decomposed runs (issue 4): the Solver sets the communication once and, on search cycles
+  // (step 4), the ghost faces; each rank computes every CP with at least one of its own faces,
+  // applies forces to its own faces only, and counts a CP in sums (energy, constraint solve,
+  // outputs) on the rank of its face 1. energy(), storedEnergy() and maxCount() are then this
+  // rank's parts, summed by the caller.
+  void setComm(const ContactComm &comm);
+  /// \brief Step 4 on search cycles: this rank's faces plus `ghosts` (ascending key, nodes in
+  /// local + ghost numbering) become the contact faces; `node_count` = local + ghost nodes;
+  /// `shared_nodes` (the nodes other ranks hold too) join the per-cycle node arrays, so their
+  /// partial sums are always this rank's own.
+  void setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Index node_count,
+                     const std::vector<Index> &shared_nodes);
+  /// \brief This rank's own faces (nodes in local numbering, `back` in 1D) for the exchange.
+  std::vector<GhostFaceDesc> ownFaces() const;
+  Index numOwnFaces() const { return _own.count; }
+  /// \brief Element density behind each own face [kg/m^3] (the explicit time step (19)).
+  std::vector<Real> ownFaceDensity(const ElementFields &elements) const;
+  /// \brief Step 8: the ghost faces' element densities, in the order of setGhostFaces.
+  void setGhostDensity(const std::vector<Real> &density);
+  bool hasExplicit() const { return _has_explicit; }
+  /// \brief Per ghost face (order of setGhostFaces): 1 if a live CP uses it. Until the next
+  /// search only these need fresh ghost data.
+  std::vector<char> ghostFacesInPlanes() const;
 
   /// \brief Contact energy: work done on the joints by the mesh, = stored + dissipated [J].
   Real energy() const { return _work; }
@@ -82,6 +122,8 @@ private:
   int tieSolve(const NodeFields &nodes, Real dt);
   void tieScatter(const NodeFields &nodes, Real dt, const VectorView &force);
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
+  void resizeNodeArrays(size_t n);
+  Real globalSum(Real local) const;
 
   int _dim = 2;
   bool _axisym = false;
@@ -90,6 +132,10 @@ private:
   Real _search_gap = -1;
   ContactFaceData _faces;
   std::vector<ContactFaceInfo> _info;
+  ContactFaceData _own;                ///< this rank's faces (= _faces without ghosts)
+  std::vector<ContactFaceInfo> _own_info;
+  std::vector<Index> _ghost_of_face;   ///< per face: its index among the ghosts, or -1
+  ContactComm _comm;
   std::vector<std::string> _part_names;
   CommonPlaneData _cp;
   FaceGeometryData _geom;
@@ -106,6 +152,11 @@ private:
   VectorView _impulse;   ///< last cycle's contact impulse fc dt (contact nodes) [N s]
   DeviceView<CpState *> _state_before; ///< CP histories at the start of step 9 (restored on failure)
   Real _work = 0;        ///< contact energy [J]
+  // energy-creation check (ContactChecks.cpp): the joint CPs' net work, its peak, the sum of
+  // its |increments|, the peak stored energy, and the step of the last cycle
+  RealView _cp_work;
+  Real _joint_work = 0, _joint_work_peak = 0, _joint_work_gross = 0, _stored_peak = 0;
+  Real _dt_prev = 0;
   Real _stored = 0;
   Index _max_count = 0;
 };

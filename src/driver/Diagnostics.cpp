@@ -2,7 +2,10 @@
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
+#include "driver/Decomposition.hpp"
+#include "parallel/Mpi.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -27,7 +30,9 @@ int quantityCode(const std::string &q, bool on_element)
 
 void Solver::setupGauges()
 {
-  auto h_x0 = Kokkos::create_mirror_view_and_copy(HostSpace(), _nodes.x0);
+  // gauges are resolved on the whole mesh (every rank alike), then kept by the rank that owns
+  // the node or holds the element; the others keep id -1
+  const HostMesh &mesh = _global_mesh ? *_global_mesh : _mesh;
   std::vector<Index> ids;
   std::vector<Index> codes;
   for (size_t g = 0; g < _deck.gauges.size(); ++g)
@@ -40,7 +45,7 @@ void Solver::setupGauges()
     {
       // nearest node, or the element with the nearest centroid
       Real best = std::numeric_limits<Real>::max();
-      const Index count = on_element ? _mesh.numElements() : _mesh.numNodes();
+      const Index count = on_element ? mesh.numElements() : mesh.numNodes();
       Index e_first = 0;
       size_t part = 0;
       for (Index k = 0; k < count; ++k)
@@ -48,17 +53,17 @@ void Solver::setupGauges()
         Real c[3] = {0, 0, 0};
         if (on_element)
         {
-          while (k >= e_first + _mesh.parts[part].numElements())
-            e_first += _mesh.parts[part++].numElements();
-          const HostPart &p = _mesh.parts[part];
+          while (k >= e_first + mesh.parts[part].numElements())
+            e_first += mesh.parts[part++].numElements();
+          const HostPart &p = mesh.parts[part];
           const int nn = nodesPerElement(p.type);
           for (int a = 0; a < nn; ++a)
             for (int i = 0; i < 3; ++i)
-              c[i] += _mesh.coords[size_t(p.connectivity[size_t((k - e_first) * nn + a)])][size_t(i)] / nn;
+              c[i] += mesh.coords[size_t(p.connectivity[size_t((k - e_first) * nn + a)])][size_t(i)] / nn;
         }
         else
           for (int i = 0; i < 3; ++i)
-            c[i] = h_x0(k, i);
+            c[i] = mesh.coords[size_t(k)][size_t(i)];
         Real d = 0;
         for (int i = 0; i < 3; ++i)
           d += (c[i] - spec.point[size_t(i)]) * (c[i] - spec.point[size_t(i)]);
@@ -69,11 +74,21 @@ void Solver::setupGauges()
         }
       }
     }
-    const Index limit = on_element ? _mesh.numElements() : _mesh.numNodes();
+    const Index limit = on_element ? mesh.numElements() : mesh.numNodes();
     if (id < 0 || id >= limit)
       throw InputError(key + ": " + (on_element ? "element " : "node ") + std::to_string(id) +
                        " does not exist (the mesh has " + std::to_string(limit) + ")");
-    const Index device_id = on_element ? _host_to_device_element[size_t(id)] : id;
+    Index device_id = on_element ? _host_to_device_element[size_t(id)] : id;
+    if (_dd)
+    {
+      const auto &map = on_element ? _dd->global_element : _dd->global_node;
+      const auto it = std::lower_bound(map.begin(), map.end(), id);
+      const Index local = it != map.end() && *it == id ? Index(it - map.begin()) : -1;
+      device_id = local < 0                          ? -1
+                  : on_element                       ? _host_to_device_element[size_t(local)]
+                  : _dd->owned[size_t(local)] != 0   ? local
+                                                     : -1;
+    }
     for (const auto &q : spec.quantities)
     {
       const int code = quantityCode(q, on_element);
@@ -116,7 +131,9 @@ std::vector<Real> Solver::gaugeValues() const
         const Index k = id(g);
         const int c = code(g);
         Real value = 0;
-        if (c < 100)
+        if (k < 0)
+          ; // another rank's gauge
+        else if (c < 100)
           value = c < 3 ? x(k, c) : c < 6 ? x(k, c - 3) - x0(k, c - 3) : v(k, c - 6);
         else
         {
@@ -137,7 +154,10 @@ std::vector<Real> Solver::gaugeValues() const
         values(g) = value;
       });
   auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), values);
-  return std::vector<Real>(h.data(), h.data() + count);
+  std::vector<Real> out(h.data(), h.data() + count);
+  if (_dd) // exact: one rank holds each value, the others add zeros
+    allReduceSum(out.data(), int(count), _comm);
+  return out;
 }
 
 EnergyReport Solver::energies() const
@@ -151,17 +171,26 @@ EnergyReport Solver::energies() const
   Kokkos::parallel_reduce(
       "scpdyn::output::hourglassEnergy", Kokkos::RangePolicy<ExecSpace>(0, _elems.count),
       KOKKOS_LAMBDA(const Index e, Real &s) { s += hg(e); }, hourglass);
+  if (_contact) // work done on the joints = stored + dissipated (closes the balance)
+  {
+    r.contact = _contact->energy();
+    r.contact_dissipation = _contact->dissipatedEnergy();
+  }
+  if (_dd)
+  {
+    Real sums[4] = {internal, hourglass, r.contact, r.contact_dissipation};
+    allReduceSum(sums, 4, _comm);
+    internal = sums[0];
+    hourglass = sums[1];
+    r.contact = sums[2];
+    r.contact_dissipation = sums[3];
+  }
   r.internal = internal;
   r.hourglass = hourglass;
   r.kinetic = _last_sums.kinetic;
   for (int i = 0; i < 3; ++i)
     r.momentum[i] = _last_sums.momentum[i];
   r.external_work = _external_work;
-  if (_contact) // work done on the joints = stored + dissipated (closes the balance)
-  {
-    r.contact = _contact->energy();
-    r.contact_dissipation = _contact->dissipatedEnergy();
-  }
   // the leapfrog conserves 1/2 m v^n.v^{n+1} + IE(x^{n+1/2}) (verification.md T1)
   const Real total = _kinetic_mid + internal + hourglass + r.contact;
   const Real scale = std::max({_energy_scale, std::abs(_initial_energy) + std::abs(_external_work),

@@ -22,8 +22,10 @@ void zeroForces(const NodeFields &nodes, const Real gravity[3], bool gather)
       });
 }
 
-NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt, int dim)
+NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt, int dim,
+                     const IndexView &owned)
 {
+  const bool all = owned.extent(0) == 0;
   auto x = nodes.x;
   auto v = nodes.v;
   auto f_int = nodes.f_int;
@@ -55,11 +57,14 @@ NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Rea
           // 1/2 v^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}); booking external work the same way
           // (the element energy does, by its trapezoidal stress) closes the balance to O(dt^2).
           const Real impulse = work_force * dt;
-          s.external_work += 0.5 * v_old * (impulse + prev_impulse(n, i));
+          if (all || owned(n))
+          {
+            s.external_work += 0.5 * v_old * (impulse + prev_impulse(n, i));
+            s.kinetic += 0.5 * m * v_new * v_new;
+            s.kinetic_mid += 0.5 * m * v_old * v_new;
+            s.momentum[i] += m * v_new;
+          }
           prev_impulse(n, i) = impulse;
-          s.kinetic += 0.5 * m * v_new * v_new;
-          s.kinetic_mid += 0.5 * m * v_old * v_new;
-          s.momentum[i] += m * v_new;
           x(n, i) += half_dt * (v_old + v_new);
           v(n, i) = v_new;
         }
@@ -68,14 +73,17 @@ NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Rea
   return sums;
 }
 
-NodeSums nodeSums(const NodeFields &nodes)
+NodeSums nodeSums(const NodeFields &nodes, const IndexView &owned)
 {
+  const bool all = owned.extent(0) == 0;
   auto v = nodes.v;
   auto mass = nodes.mass;
   NodeSums sums;
   Kokkos::parallel_reduce(
       "nodeSums", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n, NodeSums &s) {
+        if (!all && !owned(n))
+          return;
         for (int i = 0; i < 3; ++i)
         {
           const Real p = mass(n) * v(n, i);

@@ -42,11 +42,15 @@ struct NodeSums
 void zeroForces(const NodeFields &nodes, const Real gravity[3], bool gather);
 
 /// \brief Step 12: integrate velocities and positions; returns kinetic energies, external
-/// work and momentum.
-NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bc, Real dt, int dim);
+/// work and momentum. With `owned` (per node, 1 = this rank owns it) the sums cover the owned
+/// nodes only, so a node shared between ranks is counted once over the ranks; every node
+/// is updated either way.
+NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bc, Real dt, int dim,
+                     const IndexView &owned = IndexView());
 
-/// \brief Kinetic energy and momentum of the current velocities.
-NodeSums nodeSums(const NodeFields &nodes);
+/// \brief Kinetic energy and momentum of the current velocities (owned nodes only when
+/// `owned` is given).
+NodeSums nodeSums(const NodeFields &nodes, const IndexView &owned = IndexView());
 
 } // namespace scpdyn
 

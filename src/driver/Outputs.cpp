@@ -3,8 +3,11 @@
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
+#include "driver/Decomposition.hpp"
 #include "material/MaterialLibrary.hpp"
+#include "parallel/Mpi.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include <cmath>
@@ -19,34 +22,127 @@ std::vector<double> toVector(const VectorView &v, Index count)
   auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), v);
   return std::vector<double>(h.data(), h.data() + size_t(count) * 3);
 }
+
+/// Decomposed runs: every rank's CPs (each reported by one rank) on rank 0, in the serial order
+/// (ascending face keys).
+ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
+{
+  std::vector<std::vector<double> *> fields;
+  ContactPointsHost mine = c;
+  for (auto *f : {&mine.area, &mine.normal_force, &mine.shear_force, &mine.closure, &mine.slip,
+                  &mine.state, &mine.key1, &mine.key2})
+    fields.push_back(f);
+  const size_t n = mine.area.size();
+  const int width = 3 + int(fields.size());
+  std::vector<double> rows;
+  for (size_t p = 0; p < n; ++p)
+  {
+    rows.insert(rows.end(), mine.poc.begin() + long(3 * p), mine.poc.begin() + long(3 * p + 3));
+    for (auto *f : fields)
+      rows.push_back((*f)[p]);
+  }
+  const int rank = mpiRank(comm), size = mpiSize(comm);
+  int count = int(rows.size());
+  std::vector<int> counts(static_cast<size_t>(size)), displs(static_cast<size_t>(size), 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
+  for (int r = 1; r < size; ++r)
+    displs[size_t(r)] = displs[size_t(r - 1)] + counts[size_t(r - 1)];
+  std::vector<double> all(rank == 0 ? size_t(displs.back() + counts.back()) : 0);
+  MPI_Gatherv(rows.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
+              MPI_DOUBLE, 0, comm);
+  ContactPointsHost out;
+  const size_t total = all.size() / size_t(width);
+  std::vector<size_t> order(total);
+  for (size_t p = 0; p < total; ++p)
+    order[p] = p;
+  auto key = [&](size_t p, int k) { return all[p * size_t(width) + size_t(width - 2 + k)]; };
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return key(a, 0) < key(b, 0) || (key(a, 0) == key(b, 0) && key(a, 1) < key(b, 1));
+  });
+  std::vector<std::vector<double> *> out_fields = {&out.area,  &out.normal_force, &out.shear_force,
+                                                   &out.closure, &out.slip,       &out.state,
+                                                   &out.key1,  &out.key2};
+  for (size_t p : order)
+  {
+    const double *r = &all[p * size_t(width)];
+    out.poc.insert(out.poc.end(), r, r + 3);
+    for (size_t k = 0; k < out_fields.size(); ++k)
+      out_fields[k]->push_back(r[3 + k]);
+  }
+  return out;
+}
 } // namespace
 
 Outputs::Outputs(const Solver &solver, const std::string &dir) : _solver(solver), _dir(dir)
 {
-  ensureDirectory(dir);
+  if (root())
+    ensureDirectory(dir);
   _start = _last_progress = std::chrono::steady_clock::now();
 }
 
 Outputs::~Outputs() = default;
 
+bool Outputs::root() const { return _solver.rank() == 0; }
+
 void Outputs::begin()
 {
   const Deck &deck = _solver.deck();
-  writeResolvedDeck(deck, _dir + "/deck.resolved.yaml");
+  const SolverDecomposition *dd = _solver.decomposition();
+  _has_contacts = _solver.contact() != nullptr;
+  _material_used.assign(_solver.materialParams().size(), 0);
+  {
+    auto mat = Kokkos::create_mirror_view_and_copy(HostSpace(), _solver.elements().material);
+    for (Index e = 0; e < _solver.elements().count; ++e)
+      _material_used[size_t(mat(e))] = 1;
+    if (dd && !_material_used.empty())
+      MPI_Allreduce(MPI_IN_PLACE, _material_used.data(), int(_material_used.size()), MPI_INT,
+                    MPI_MAX, _solver.comm());
+  }
+  if (root())
+    writeResolvedDeck(deck, _dir + "/deck.resolved.yaml");
 
   FieldMeshDesc desc;
   desc.dim = deck.dimension;
   desc.coords0 = toVector(_solver.nodes().x0, _solver.nodes().count);
   auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), _solver.elements().conn);
+  std::vector<int> rows; // decomposed: fixed-width rows of global node ids, -1 padded
   for (const auto &g : _solver.groups())
     for (Index e = g.begin; e < g.end; ++e)
     {
       desc.cell_types.push_back(int(g.type));
       for (int a = 0; a < nodesPerElement(g.type); ++a)
         desc.connectivity.push_back(conn(e, a));
+      for (int a = 0; dd && a < kMaxElementNodes; ++a)
+        rows.push_back(a < nodesPerElement(g.type) ? int(dd->global_node[size_t(conn(e, a))]) : -1);
     }
+  if (dd)
+  {
+    std::vector<long> node_rows(dd->owned.size(), -1), cell_rows;
+    for (size_t n = 0; n < node_rows.size(); ++n)
+      if (dd->owned[n])
+        node_rows[n] = dd->global_node[n];
+    for (Index c : dd->output_cell)
+      cell_rows.push_back(c);
+    _gather = std::make_unique<OutputGather>(_solver.comm(), dd->global_nodes, dd->global_elements,
+                                             std::move(node_rows), std::move(cell_rows));
+    desc.coords0 = _gather->nodes(desc.coords0, 3);
+    desc.cell_types = _gather->cellsInt(desc.cell_types, 1);
+    rows = _gather->cellsInt(rows, kMaxElementNodes);
+    desc.connectivity.clear();
+    for (size_t c = 0; c < desc.cell_types.size(); ++c)
+      for (int a = 0; a < nodesPerElement(ElementType(desc.cell_types[c])); ++a)
+        desc.connectivity.push_back(rows[c * kMaxElementNodes + size_t(a)]);
+  }
+  if (!root())
+  {
+    writeFrame();
+    writeRows();
+    _next_field = deck.field_interval;
+    _next_history = deck.history_interval;
+    return;
+  }
   _fields = std::make_unique<FieldWriter>(_dir, desc);
-  if (_solver.contact())
+  if (_has_contacts)
     _contacts = std::make_unique<PointSetWriter>(_dir, "contacts");
 
   _history = std::make_unique<CsvWriter>(
@@ -107,6 +203,11 @@ void Outputs::writeFrame()
   for (const auto &m : _solver.materialParams())
     names.push_back(historyNames(m));
   std::map<std::string, std::vector<double>> named;
+  if (_gather) // the fields every rank writes: those of the materials used on any rank
+    for (size_t m = 0; m < names.size(); ++m)
+      for (const auto &n : names[m])
+        if (_material_used[m] && !n.empty())
+          named[n].resize(ne, 0.0);
   for (size_t k = 0; k < ne; ++k)
   {
     const auto &n = names[size_t(mat(k))];
@@ -123,15 +224,30 @@ void Outputs::writeFrame()
                     {"plastic_strain", ep}, {"part", pt}};
   for (auto &kv : named)
     f.cell_scalars.push_back({kv.first, std::move(kv.second)});
-  _fields->write(f);
+  if (_gather)
+  {
+    f.coords = _gather->nodes(f.coords, 3);
+    for (auto &v : f.node_vectors)
+      v.second = _gather->nodes(v.second, 3);
+    for (auto &c : f.cell_scalars)
+      c.second = _gather->cells(c.second, 1);
+    for (auto &c : f.cell_tensors6)
+      c.second = _gather->cells(c.second, 6);
+  }
+  if (_fields)
+    _fields->write(f);
   writeContactFrame();
 }
 
 void Outputs::writeContactFrame()
 {
-  if (!_contacts)
+  if (!_has_contacts)
     return;
-  const ContactPointsHost c = _solver.contact()->points();
+  ContactPointsHost c = _solver.contact()->points();
+  if (_solver.numRanks() > 1)
+    c = gatherPoints(c, _solver.comm());
+  if (!root())
+    return;
   PointFrame f;
   f.time = _solver.time();
   f.cycle = _solver.cycles();
@@ -140,7 +256,8 @@ void Outputs::writeContactFrame()
                {"shear_force", c.shear_force}, {"closure", c.closure},
                {"slip", c.slip},           {"state", c.state},
                {"face1_key", c.key1},      {"face2_key", c.key2}};
-  _contacts->write(f);
+  if (_contacts)
+    _contacts->write(f);
 }
 
 void Outputs::writeRows()
@@ -151,12 +268,14 @@ void Outputs::writeRows()
   const EnergyReport r = _solver.energies();
   _last_balance_error = r.balance_error;
   _max_balance_error = std::max(_max_balance_error, std::abs(r.balance_error));
-  _history->row({_solver.time(), double(_solver.cycles()), _solver.dt(), r.kinetic, r.internal,
-                 r.hourglass, r.external_work, r.contact, r.balance_error, r.momentum[0],
-                 r.momentum[1], r.momentum[2], r.contact_dissipation});
   std::vector<double> row{_solver.time()};
   for (Real v : _solver.gaugeValues())
     row.push_back(v);
+  if (!root())
+    return;
+  _history->row({_solver.time(), double(_solver.cycles()), _solver.dt(), r.kinetic, r.internal,
+                 r.hourglass, r.external_work, r.contact, r.balance_error, r.momentum[0],
+                 r.momentum[1], r.momentum[2], r.contact_dissipation});
   _gauges->row(row);
 }
 
@@ -178,7 +297,7 @@ void Outputs::afterCycle()
       _next_history += deck.history_interval;
   }
   const auto now = std::chrono::steady_clock::now();
-  if (std::chrono::duration<double>(now - _last_progress).count() >= deck.progress_interval)
+  if (root() && std::chrono::duration<double>(now - _last_progress).count() >= deck.progress_interval)
   {
     _last_progress = now;
     const double wall = std::chrono::duration<double>(now - _start).count();
@@ -193,20 +312,79 @@ void Outputs::finish(const std::string &error)
 {
   writeFrame();
   writeRows();
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count();
+  // per-step timers: the slowest rank's time (what the run waits for), and min / mean / max
+  // over the ranks in timers_ranks
+  std::vector<std::string> names;
+  std::vector<double> mine;
+  for (const auto &kv : _solver.timers().seconds())
+  {
+    names.push_back(kv.first);
+    mine.push_back(kv.second);
+  }
+  mine.push_back(_solver.cycleWallTime());
+  mine.push_back(wall);
+  const int ranks = _solver.numRanks();
+  std::vector<double> lo = mine, hi = mine, mean = mine;
+  if (ranks > 1)
+  {
+    // the same steps ran on every rank (same deck), so the timer lists match
+    MPI_Allreduce(mine.data(), lo.data(), int(mine.size()), MPI_DOUBLE, MPI_MIN, _solver.comm());
+    MPI_Allreduce(mine.data(), hi.data(), int(mine.size()), MPI_DOUBLE, MPI_MAX, _solver.comm());
+    allReduceSum(mean.data(), int(mean.size()), _solver.comm());
+    for (double &m : mean)
+      m /= ranks;
+    wall = hi.back();
+  }
+  JsonObject decomposition;
+  if (const SolverDecomposition *dd = _solver.decomposition())
+  {
+    // per rank: subdomain size and bytes sent per cycle (shared-node sums of steps 7 and 10b
+    // and of the constraint solves, ghost copies of step 8, ghost rebuilds of step 4)
+    const double cycles = std::max(1.0, double(_solver.cycles()));
+    const double halo = double(dd->halo->bytesSent() - dd->halo_bytes_setup);
+    const double ghost = dd->ghosts ? double(dd->ghosts->bytesGathered()) : 0.0;
+    const double values[] = {double(_solver.elements().count), double(_solver.nodes().count),
+                             double(dd->halo->numSharedNodes()),
+                             double(dd->halo->numNeighbours()),
+                             dd->ghosts ? double(dd->ghosts->faces().size()) : 0.0,
+                             dd->ghosts ? double(dd->ghosts->numGhostNodes()) : 0.0,
+                             halo / cycles, ghost / cycles, double(dd->rebuild_bytes) / cycles,
+                             (halo + ghost + double(dd->rebuild_bytes)) / cycles};
+    const char *names[] = {"elements", "nodes", "shared_nodes", "neighbours", "ghost_faces",
+                           "ghost_nodes", "bytes_shared_node_sums_per_cycle",
+                           "bytes_ghost_copies_per_cycle", "bytes_ghost_rebuilds_per_cycle",
+                           "bytes_per_cycle"};
+    const int n = int(sizeof values / sizeof values[0]);
+    std::vector<double> v_lo(values, values + n), v_hi = v_lo, v_mean = v_lo;
+    MPI_Allreduce(values, v_lo.data(), n, MPI_DOUBLE, MPI_MIN, _solver.comm());
+    MPI_Allreduce(values, v_hi.data(), n, MPI_DOUBLE, MPI_MAX, _solver.comm());
+    allReduceSum(v_mean.data(), n, _solver.comm());
+    for (int k = 0; k < n; ++k)
+    {
+      JsonObject st;
+      st.add("min", v_lo[size_t(k)]).add("mean", v_mean[size_t(k)] / ranks).add("max", v_hi[size_t(k)]);
+      decomposition.add(names[k], st);
+    }
+  }
+  if (!root())
+    return;
   _history->close();
   _gauges->close();
   _fields->close();
   if (_contacts)
     _contacts->close();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count();
-  JsonObject timers;
+  JsonObject timers, timer_stats;
   double cycle_time = 0;
-  for (const auto &kv : _solver.timers().seconds())
+  for (size_t k = 0; k < names.size(); ++k)
   {
-    timers.add(kv.first, kv.second);
-    cycle_time += kv.second;
+    timers.add(names[k], hi[k]);
+    JsonObject st;
+    st.add("min", lo[k]).add("mean", mean[k]).add("max", hi[k]);
+    timer_stats.add(names[k], st);
+    cycle_time += hi[k];
   }
-  const double element_cycles = double(_solver.elements().count) * double(_solver.cycles());
+  const double element_cycles = double(_solver.globalElementCount()) * double(_solver.cycles());
   JsonObject s;
   s.add("title", _solver.deck().title)
       .add("status", error.empty() ? std::string("completed") : std::string("failed"))
@@ -215,16 +393,20 @@ void Outputs::finish(const std::string &error)
       .add("end_time", _solver.time())
       .add("wall_time", wall)
       .add("cycle_time", cycle_time)
+      .add("cycle_wall_time", hi[hi.size() - 2])
       .add("timers", timers)
-      .add("ranks", 1)
+      .add("timers_ranks", timer_stats)
+      .add("ranks", ranks)
       .add("threads", int(ExecSpace().concurrency()))
-      .add("nodes", long(_solver.nodes().count))
-      .add("elements", long(_solver.elements().count))
+      .add("nodes", _solver.globalNodeCount())
+      .add("elements", _solver.globalElementCount())
       .add("energy_balance_error", std::abs(_last_balance_error))
       .add("energy_balance_error_max", _max_balance_error)
       .add("common_planes_max", long(_solver.contact() ? _solver.contact()->maxCount() : 0))
       .add("element_cycles_per_second", cycle_time > 0 ? element_cycles / cycle_time : 0.0)
       .add("ns_per_element_cycle", element_cycles > 0 ? 1e9 * cycle_time / element_cycles : 0.0);
+  if (ranks > 1)
+    s.add("decomposition", decomposition);
   writeJson(_dir + "/summary.json", s);
 }
 

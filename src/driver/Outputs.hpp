@@ -1,7 +1,9 @@
 #pragma once
 /// \file Outputs.hpp
 /// \brief Step 13's outputs: field frames (HDF5 + XDMF), history.csv, gauges.csv,
-/// summary.json, the resolved deck and a progress line on stderr.
+/// summary.json, the resolved deck and a progress line on stderr. Decomposed runs: every
+/// member is collective; rank 0 writes the files, in the serial layout.
+#include "driver/OutputGather.hpp"
 #include "io/FieldWriter.hpp"
 #include "io/TextOutput.hpp"
 
@@ -30,11 +32,15 @@ private:
   void writeFrame();
   void writeRows();
   void writeContactFrame();
+  bool root() const;
 
   const Solver &_solver;
   std::string _dir;
   std::unique_ptr<FieldWriter> _fields;
   std::unique_ptr<PointSetWriter> _contacts; ///< contacts.xmf/h5, with contact surfaces only
+  bool _has_contacts = false;
+  std::unique_ptr<OutputGather> _gather;     ///< decomposed runs: fields to rank 0
+  std::vector<int> _material_used;           ///< per material: used by an element on any rank
   std::unique_ptr<CsvWriter> _history, _gauges;
   double _next_field = 0, _next_history = 0;
   long _last_frame_cycle = -1, _last_row_cycle = -1;

@@ -3,12 +3,14 @@
 #include "driver/Solver.hpp"
 
 #include "bc/TimeFunctions.hpp"
+#include "driver/Decomposition.hpp"
 #include "element/ElementKinematics.hpp"
 #include "material/MaterialLibrary.hpp"
 #include "material/MaterialUpdate.hpp"
 #include "mesh/GmshReader.hpp"
 #include "mesh/MeshGenerators.hpp"
 #include "mesh/MeshOps.hpp"
+#include "parallel/Mpi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -66,18 +68,27 @@ Real hostElementVolume(ElementType type, const Real x[][3], bool axi)
 
 } // namespace
 
-Solver::Solver(const Deck &deck) : _deck(deck)
+Solver::Solver(const Deck &deck, MPI_Comm comm) : _deck(deck), _comm(comm)
 {
+  _rank = mpiRank(comm);
+  _num_ranks = mpiSize(comm);
   for (const auto &m : _deck.materials)
     _materials_host.push_back(makeMaterialParams(m));
   _bc.functions = _deck.functions;
   setupMesh();
+  if (_num_ranks > 1)
+    decompose();
   setupFields();
+  if (_dd)
+    finishDecomposition();
   setupSets();
   setupBoundaryConditions();
   setupContact();
   setupGauges();
   setupInitialState();
+  _global_mesh.reset(); // from here on a rank holds its own piece only
+  if (_dd)
+    _dd->halo_bytes_setup = _dd->halo->bytesSent();
 }
 
 Solver::~Solver() = default;
@@ -254,6 +265,8 @@ void Solver::setupFields()
   Kokkos::deep_copy(_nodes.x0, h_x0);
   Kokkos::deep_copy(_nodes.x, h_x0);
   Kokkos::deep_copy(_nodes.mass, h_mass);
+  if (_dd) // step 2 [A]: every copy of a shared node holds the total mass
+    _dd->halo->sum(_nodes.mass);
   Kokkos::deep_copy(_nodes.bc, h_bc);
   Kokkos::deep_copy(_elems.conn, h_conn);
   Kokkos::deep_copy(_elems.part, h_part);
@@ -310,8 +323,10 @@ void Solver::setupSets()
     std::vector<Index> nodes =
         s.has_box ? nodesInBox(_mesh, s.box_min, s.box_max, tol)
                   : nodesOfParts(_mesh, partsMatching(s.part, key + ".part"));
-    if (nodes.empty())
-      throw InputError(_deck.path + ": " + key + ": node set '" + s.name + "' selects no node");
+    if (!s.has_box)
+      unifyNodeSet(nodes);
+    checkSetNotEmpty(nodes.size(),
+                     _deck.path + ": " + key + ": node set '" + s.name + "' selects no node");
     _node_sets[s.name] = nodes;
   }
   for (size_t i = 0; i < _deck.face_sets.size(); ++i)
@@ -321,8 +336,8 @@ void Solver::setupSets()
     std::vector<HostFace> faces =
         s.has_box ? facesInBox(_external_faces, _mesh, s.box_min, s.box_max, tol)
                   : facesOfParts(_external_faces, partsMatching(s.part, key + ".part"));
-    if (faces.empty())
-      throw InputError(_deck.path + ": " + key + ": face set '" + s.name + "' selects no face");
+    checkSetNotEmpty(faces.size(),
+                     _deck.path + ": " + key + ": face set '" + s.name + "' selects no face");
     _face_sets[s.name] = faces;
   }
 }
@@ -434,6 +449,31 @@ void Solver::setupInitialState()
         momentum[size_t(n)][size_t(i)] += m * v0[size_t(i)];
     }
   }
+  if (_dd)
+  { // a node shared between ranks takes the mean over the elements of every rank
+    VectorView p("initial_momentum", size_t(num_nodes));
+    RealView m("initial_mass", size_t(num_nodes));
+    auto h_p = Kokkos::create_mirror_view(p);
+    auto h_m = Kokkos::create_mirror_view(m);
+    for (Index n = 0; n < num_nodes; ++n)
+    {
+      h_m(n) = mass[size_t(n)];
+      for (int i = 0; i < 3; ++i)
+        h_p(n, i) = momentum[size_t(n)][size_t(i)];
+    }
+    Kokkos::deep_copy(p, h_p);
+    Kokkos::deep_copy(m, h_m);
+    _dd->halo->sum(p);
+    _dd->halo->sum(m);
+    Kokkos::deep_copy(h_p, p);
+    Kokkos::deep_copy(h_m, m);
+    for (Index n = 0; n < num_nodes; ++n)
+    {
+      mass[size_t(n)] = h_m(n);
+      for (int i = 0; i < 3; ++i)
+        momentum[size_t(n)][size_t(i)] = h_p(n, i);
+    }
+  }
   auto h_v = Kokkos::create_mirror_view(_nodes.v);
   auto h_bc = Kokkos::create_mirror_view_and_copy(HostSpace(), _nodes.bc);
   updateVelocityValues(_bc, 0.0);
@@ -490,12 +530,29 @@ void Solver::setupInitialState()
   _controls.q_quadratic = _deck.bulk_viscosity_quadratic;
   _controls.gather = _deck.scatter == "gather";
 
-  const Real dt_elem = initialElementTimeStep(_groups, _deck.geometry, _nodes, _elems, _materials);
+  Real dt_elem = initialElementTimeStep(_groups, _deck.geometry, _nodes, _elems, _materials);
+  if (_dd)
+  {
+    // the lowest failing rank names its element (global id); every rank stops alike
+    const bool bad = !(dt_elem > 0);
+    int first = bad ? _rank : _num_ranks;
+    MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, _comm);
+    long element = bad ? long(globalElement(meshElementOfDevice(Index(-dt_elem) - 1))) : 0;
+    if (first < _num_ranks)
+    {
+      MPI_Bcast(&element, 1, MPI_LONG, first, _comm);
+      throw InputError(_deck.path + ": parts: element " + std::to_string(element) +
+                       " is inverted or degenerate");
+    }
+    dt_elem = allReduceMin(dt_elem, _comm);
+  }
   if (!(dt_elem > 0))
     throw InputError(_deck.path + ": parts: element " + std::to_string(Index(-dt_elem) - 1) +
                      " is inverted or degenerate");
   _dt_next = std::min(_deck.courant * dt_elem, _deck.dt_max);
-  const NodeSums s = nodeSums(_nodes);
+  NodeSums s = nodeSums(_nodes, _dd ? _dd->owned_device : IndexView());
+  if (_dd)
+    reduceNodeSums(s);
   _last_sums = s;
   _kinetic_mid = s.kinetic;
   _initial_energy = 0;

@@ -2,8 +2,11 @@
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
+#include "driver/Decomposition.hpp"
 #include "driver/Outputs.hpp"
+#include "parallel/Mpi.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
@@ -12,6 +15,7 @@ namespace scpdyn
 
 void Solver::cycle()
 {
+  const auto start = std::chrono::steady_clock::now();
   // No shortened last step: a sudden change of dt changes the leapfrog's conserved energy
   // (an artefact in the balance); the run ends on the first cycle at or past the end time.
   _dt = _dt_next;
@@ -23,16 +27,24 @@ void Solver::cycle()
   stepExchangeGhostFaceData();    // 8: ghost faces get x, v, face masses
   stepContactForces();            // 9: common planes: detection, geometry, forces
   stepFaceBoundaryConditions();   // 10: pressure on faces
+  stepExchangeLoadPartials();     // 10b: sum contact and pressure forces on shared nodes
   stepNodeBoundaryConditions();   // 11: nodal forces (velocities are imposed in 12)
   stepUpdateNodes();              // 12: v, x; next stable time step
   _time += _dt;                   // 13: back to 3 (output by the caller)
   ++_cycle;
+  _cycle_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Steps 4, 7 and 8 are filled in by the domain-decomposition issue.
-void Solver::stepExchangeFaceConnectivity() {}
-void Solver::stepExchangeSharedNodeForces() {}
-void Solver::stepExchangeGhostFaceData() {}
+// Steps 4 and 8 (ghost contact faces) are in src/driver/ContactGhosts.cpp, 7 and 10b in
+// src/driver/Decompose.cpp.
+
+Index Solver::meshElementOfDevice(Index device) const
+{
+  for (size_t k = 0; k < _host_to_device_element.size(); ++k)
+    if (_host_to_device_element[k] == device)
+      return Index(k);
+  return device;
+}
 
 void Solver::setupContact()
 {
@@ -46,12 +58,21 @@ void Solver::setupContact()
   in.host_to_device_element = &_host_to_device_element;
   in.nodes = _nodes;
   in.elems = _elems;
+  if (_dd)
+  {
+    in.global_element = &_dd->global_element;
+    MPI_Comm comm = _comm;
+    in.global_count = [comm](long long n) { return allReduceSum(n, comm); };
+  }
   _contact = std::make_shared<ContactSystem>(in);
+  if (_dd)
+    setupContactGhosts();
 }
 
 void Solver::stepSortIntoBins()
 {
-  if (!_contact)
+  // decomposed: the search sorts in step 9, once the ghost faces have this cycle's data
+  if (!_contact || _dd)
     return;
   ScopedStep t(_timers, "03_sort_into_bins");
   _contact->sortIntoBins(_nodes, _dt, _cycle);
@@ -63,8 +84,9 @@ void Solver::stepContactForces()
     return;
   ScopedStep t(_timers, "09_contact_forces");
   const ContactFailure f = _contact->computeForces(_nodes, _bc, _dt, _cycle, _time);
-  if (f.failed)
-    throw SimulationError(f.message);
+  collectiveCheck(f.failed ? f.message : std::string());
+  if (_dd && _contact->searchDue(_cycle) && !_contact->searchDue(_cycle + 1))
+    restrictGhosts(); // until the next search, ghost data only for the faces of live CPs
 }
 
 void Solver::stepZeroForces()
@@ -81,24 +103,22 @@ void Solver::stepElementSolvers()
   const Real dt_elem = computeElementForces(_groups, _controls, _nodes, _elems, _materials, _corners);
   if (_controls.gather)
     gatherCornerForces(_nodes, _corners);
+  std::string error;
   if (!(dt_elem > 0))
   {
     std::ostringstream os;
     if (std::isnan(dt_elem))
       os << "non-finite element state at cycle " << _cycle << ", time " << _time;
     else
-    {
-      const Index d = Index(-dt_elem) - 1;
-      Index mesh_id = d;
-      for (size_t k = 0; k < _host_to_device_element.size(); ++k)
-        if (_host_to_device_element[k] == d)
-          mesh_id = Index(k);
-      os << "element " << mesh_id << " inverted at cycle " << _cycle << ", time " << _time
-         << " s (dt " << _dt << " s): reduce time.courant or check the loading";
-    }
-    throw SimulationError(os.str());
+      os << "element " << globalElement(meshElementOfDevice(Index(-dt_elem) - 1))
+         << " inverted at cycle " << _cycle << ", time " << _time << " s (dt " << _dt
+         << " s): reduce time.courant or check the loading";
+    error = os.str();
   }
+  collectiveCheck(error); // every rank stops before the shared-node exchange
   _dt_next = std::min(_deck.courant * dt_elem, _deck.dt_max);
+  if (_dd) // the contact limit (19) below takes the global element step
+    _dt_next = allReduceMin(_dt_next, _comm);
 }
 
 void Solver::stepFaceBoundaryConditions()
@@ -118,12 +138,14 @@ void Solver::stepUpdateNodes()
 {
   ScopedStep t(_timers, "12_update_nodes");
   updateVelocityValues(_bc, _time + _dt);
-  _last_sums = updateNodes(_nodes, _bc, _dt, _deck.dimension);
+  _last_sums = updateNodes(_nodes, _bc, _dt, _deck.dimension, _dd ? _dd->owned_device : IndexView());
+  if (_contact) // (19) for explicit contacts, from v^{n+1}; dt_el = the element Courant step
+    _dt_next = std::min(_dt_next, _contact->stableTimeStep(_nodes, _elems, _dt_next / _deck.courant));
+  if (_dd) // one collective: the sums over the ranks in rank order, and the global time step
+    reduceNodeSums(_last_sums, &_dt_next);
   _external_work += _last_sums.external_work;
   _kinetic_mid = _last_sums.kinetic_mid;
   _energy_scale = std::max(_energy_scale, _last_sums.kinetic);
-  if (_contact) // (19) for explicit contacts, from v^{n+1}; dt_el = the element Courant step
-    _dt_next = std::min(_dt_next, _contact->stableTimeStep(_nodes, _elems, _dt_next / _deck.courant));
   if (!std::isfinite(_last_sums.kinetic))
   {
     std::ostringstream os;

@@ -10,6 +10,8 @@
 #include "input/Deck.hpp"
 #include "mesh/HostMesh.hpp"
 
+#include <mpi.h>
+
 #include <memory>
 
 namespace scpdyn
@@ -17,6 +19,7 @@ namespace scpdyn
 
 class Outputs;
 class ContactSystem;
+struct SolverDecomposition;
 
 /// \brief A run that cannot go on (inverted element, non-finite state); the message names
 /// the element and cycle. main() exits with status 3 after the outputs are flushed.
@@ -50,8 +53,11 @@ struct GaugeSlot
 class Solver
 {
 public:
-  /// \brief Set-up (steps 1 and 2): meshes, sets, materials, BCs, initial state.
-  explicit Solver(const Deck &deck);
+  /// \brief Set-up (steps 1 and 2): meshes, sets, materials, BCs, initial state. With more
+  /// than one rank in `comm` the mesh is decomposed (issue 4): every rank reads the same deck
+  /// and keeps its own elements, nodes and faces; every member function below is then
+  /// collective over `comm` unless it says otherwise. One rank runs exactly the serial code.
+  explicit Solver(const Deck &deck, MPI_Comm comm = MPI_COMM_WORLD);
   ~Solver();
 
   /// \brief Run to the end time with outputs in `output_dir`; returns the number of cycles.
@@ -63,21 +69,40 @@ public:
   Real dt() const { return _dt; }
   long cycles() const { return _cycle; }
   const Deck &deck() const { return _deck; }
+  /// \brief This rank's mesh (the whole mesh on one rank).
   const HostMesh &mesh() const { return _mesh; }
   const NodeFields &nodes() const { return _nodes; }
   const ElementFields &elements() const { return _elems; }
   const std::vector<GaugeSlot> &gauges() const { return _gauges; }
   const StepTimers &timers() const { return _timers; }
+  /// \brief Wall-clock time spent in cycle() so far on this rank [s] (the steps' timers plus
+  /// whatever runs between them).
+  double cycleWallTime() const { return _cycle_wall; }
   const std::vector<ElementGroup> &groups() const { return _groups; }
   const std::vector<MaterialParams> &materialParams() const { return _materials_host; }
   /// \brief Device element id of a mesh element id (parts numbered in deck order).
   Index deviceElement(Index mesh_element) const { return _host_to_device_element[size_t(mesh_element)]; }
-  /// \brief Current energies and momentum (reduces over elements; not free).
+  /// \brief Current energies and momentum of the whole model (reduces over elements and
+  /// ranks; not free).
   EnergyReport energies() const;
-  /// \brief Current gauge values, in the order of gauges().
+  /// \brief Current gauge values, in the order of gauges(), on every rank (each from the rank
+  /// that owns its node or element).
   std::vector<Real> gaugeValues() const;
   /// \brief The common-plane contact, or null when the deck has no contact surfaces.
   const ContactSystem *contact() const { return _contact.get(); }
+
+  // Domain decomposition (issue 4); the defaults describe the serial run.
+  MPI_Comm comm() const { return _comm; }
+  int rank() const { return _rank; }
+  int numRanks() const { return _num_ranks; }
+  /// \brief The decomposition, or null on one rank.
+  const SolverDecomposition *decomposition() const { return _dd.get(); }
+  /// \brief Global id of a local node / mesh element (identity on one rank).
+  Index globalNode(Index local) const;
+  Index globalElement(Index mesh_element) const;
+  /// \brief Nodes and elements of the whole model (summed over ranks).
+  long globalNodeCount() const;
+  long globalElementCount() const;
 
 private:
   void setupMesh();
@@ -87,6 +112,17 @@ private:
   void setupGauges();
   void setupInitialState();
   void setupContact();
+  void decompose();
+  void finishDecomposition();
+  void setupContactGhosts();
+  void ensureNodeCapacity(Index count);
+  void restrictGhosts();
+  void checkSetNotEmpty(std::size_t local_count, const std::string &message) const;
+  void unifyNodeSet(std::vector<Index> &nodes) const;
+  void stepExchangeLoadPartials(); // 10b
+  void collectiveCheck(const std::string &local_error) const;
+  void reduceNodeSums(NodeSums &sums, Real *dt_min = nullptr) const;
+  Index meshElementOfDevice(Index device) const;
 
   // the cycle's steps (numbers as in the paper)
   void stepSortIntoBins();             // 3
@@ -131,6 +167,12 @@ private:
   NodeSums _last_sums;
   StepTimers _timers;
   std::shared_ptr<ContactSystem> _contact; ///< shared_ptr: no complete type needed in ~Solver
+
+  MPI_Comm _comm = MPI_COMM_WORLD;
+  int _rank = 0, _num_ranks = 1;
+  std::shared_ptr<SolverDecomposition> _dd; ///< null on one rank
+  std::unique_ptr<HostMesh> _global_mesh;   ///< the whole mesh during set-up (decomposed runs)
+  double _cycle_wall = 0;
 };
 
 } // namespace scpdyn

@@ -1,6 +1,9 @@
 // scpdyn command line: scpdyn DECK.yaml [-o DIR]; Kokkos flags (--kokkos-...) pass through.
 // Exit status: 0 done, 1 internal error, 2 input error, 3 the run failed (outputs kept).
+// Under mpirun every rank runs this; the mesh is decomposed over the ranks, rank 0 prints and
+// writes the outputs, and the errors are collective, so all ranks exit with the same status.
 #include "driver/Solver.hpp"
+#include "parallel/Mpi.hpp"
 
 #include <Kokkos_Core.hpp>
 #include <mpi.h>
@@ -18,6 +21,7 @@ const char *kUsage =
     "  -o DIR      output directory (default: output.directory of the deck, else out/<deck name>)\n"
     "  --help      this text;  --version  the version\n"
     "  Threads: OMP_NUM_THREADS=T (or --kokkos-num-threads=T); bind with OMP_PROC_BIND=spread.\n"
+    "  Ranks:   mpirun -np R scpdyn DECK.yaml (hybrid: R ranks x OMP_NUM_THREADS threads).\n"
     "  Outputs: fields.xmf/.h5 (ParaView), history.csv, gauges.csv, summary.json,\n"
     "           deck.resolved.yaml.\n";
 
@@ -44,10 +48,11 @@ int main(int argc, char **argv)
       return 0;
     }
   }
-  MPI_Init(&argc, &argv);
+  scpdyn::MpiSession mpi(argc, argv);
   Kokkos::initialize(argc, argv);
   int status = 0;
   {
+    const bool root = scpdyn::mpiRank() == 0;
     std::string deck_path, out_dir;
     for (int i = 1; i < argc; ++i)
     {
@@ -56,20 +61,23 @@ int main(int argc, char **argv)
         out_dir = argv[++i];
       else if (!a.empty() && a[0] == '-')
       {
-        std::fprintf(stderr, "scpdyn: unknown option '%s'\n%s", a.c_str(), kUsage);
+        if (root)
+          std::fprintf(stderr, "scpdyn: unknown option '%s'\n%s", a.c_str(), kUsage);
         status = 2;
       }
       else if (deck_path.empty())
         deck_path = a;
       else
       {
-        std::fprintf(stderr, "scpdyn: more than one deck given ('%s')\n", a.c_str());
+        if (root)
+          std::fprintf(stderr, "scpdyn: more than one deck given ('%s')\n", a.c_str());
         status = 2;
       }
     }
     if (status == 0 && deck_path.empty())
     {
-      std::fputs(kUsage, stderr);
+      if (root)
+        std::fputs(kUsage, stderr);
       status = 2;
     }
     if (status == 0)
@@ -80,31 +88,44 @@ int main(int argc, char **argv)
         if (out_dir.empty())
           out_dir = deck.output_dir.empty() ? "out/" + deckStem(deck_path) : deck.output_dir;
         scpdyn::Solver solver(deck);
-        std::fprintf(stderr, "scpdyn: %s: %d nodes, %d elements, %d threads -> %s\n",
-                     deck_path.c_str(), solver.nodes().count, solver.elements().count,
-                     int(scpdyn::ExecSpace().concurrency()), out_dir.c_str());
+        if (root && solver.numRanks() == 1)
+          std::fprintf(stderr, "scpdyn: %s: %d nodes, %d elements, %d threads -> %s\n",
+                       deck_path.c_str(), solver.nodes().count, solver.elements().count,
+                       int(scpdyn::ExecSpace().concurrency()), out_dir.c_str());
+        else if (root)
+          std::fprintf(stderr, "scpdyn: %s: %ld nodes, %ld elements, %d ranks x %d threads -> %s\n",
+                       deck_path.c_str(), solver.globalNodeCount(), solver.globalElementCount(),
+                       solver.numRanks(), int(scpdyn::ExecSpace().concurrency()), out_dir.c_str());
         const long cycles = solver.run(out_dir);
-        std::printf("scpdyn: done, %ld cycles to t = %.6e s; results in %s\n", cycles,
-                    solver.time(), out_dir.c_str());
+        if (root)
+          std::printf("scpdyn: done, %ld cycles to t = %.6e s; results in %s\n", cycles,
+                      solver.time(), out_dir.c_str());
       }
       catch (const scpdyn::InputError &e)
       {
-        std::fprintf(stderr, "scpdyn: input error: %s\n", e.what());
+        if (root)
+          std::fprintf(stderr, "scpdyn: input error: %s\n", e.what());
         status = 2;
       }
       catch (const scpdyn::SimulationError &e)
       {
-        std::fprintf(stderr, "scpdyn: run stopped: %s (outputs so far are kept)\n", e.what());
+        if (root)
+          std::fprintf(stderr, "scpdyn: run stopped: %s (outputs so far are kept)\n", e.what());
         status = 3;
       }
       catch (const std::exception &e)
       {
-        std::fprintf(stderr, "scpdyn: error: %s\n", e.what());
         status = 1;
+        if (scpdyn::mpiSize() == 1)
+          std::fprintf(stderr, "scpdyn: error: %s\n", e.what());
+        else
+        { // not known to be collective: the other ranks may wait for this one forever
+          std::fprintf(stderr, "scpdyn: error on rank %d: %s\n", scpdyn::mpiRank(), e.what());
+          MPI_Abort(MPI_COMM_WORLD, status);
+        }
       }
     }
   }
   Kokkos::finalize();
-  MPI_Finalize();
   return status;
 }

@@ -94,16 +94,22 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
             for (int i = 0; i < 3; ++i)
               corner_force(e, a, i) = r.force[a][i];
         }
+        else if (scatter == Scatter::Plain)
+        {
+          for (int a = 0; a < N; ++a)
+          {
+            const Index n = conn(e, a);
+            for (int i = 0; i < ElementTraits<T>::dim; ++i)
+              f_plain(n, i) += r.force[a][i];
+          }
+        }
         else
         {
           for (int a = 0; a < N; ++a)
           {
             const Index n = conn(e, a);
             for (int i = 0; i < ElementTraits<T>::dim; ++i)
-              if (scatter == Scatter::Atomic)
-                f_atomic(n, i) += r.force[a][i];
-              else
-                f_plain(n, i) += r.force[a][i];
+              f_atomic(n, i) += r.force[a][i];
           }
         }
         local_min = r.stable_dt < local_min ? r.stable_dt : local_min;
@@ -113,9 +119,9 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
 }
 
 template <bool Axi>
-Real launchAny(const ElementGroup &g, const ElementControls &ctl, Scatter s, const NodeFields &nodes,
-               const ElementFields &el, const DeviceView<MaterialParams *> &materials,
-               const NodeCorners &corners)
+Real launchAny(const ElementGroup &g, const ElementControls &ctl, Scatter s,
+               const NodeFields &nodes, const ElementFields &el,
+               const DeviceView<MaterialParams *> &materials, const NodeCorners &corners)
 {
   switch (g.type)
   {
@@ -193,13 +199,14 @@ void gatherCornerForces(const NodeFields &nodes, const NodeCorners &corners)
   Kokkos::parallel_for(
       "gatherCorners", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n) {
+        // corner e * 8 + a is the 3 reals at 3 * corner of the (LayoutRight) corner array
+        const Real *cf0 = cf.data();
         Real s[3] = {0, 0, 0};
         for (Index k = offsets(n); k < offsets(n + 1); ++k)
         {
-          const Index corner = list(k);
-          const Index e = corner / kMaxElementNodes, a = corner % kMaxElementNodes;
+          const Real *c = cf0 + 3 * size_t(list(k));
           for (int i = 0; i < 3; ++i)
-            s[i] += cf(e, a, i);
+            s[i] += c[i];
         }
         for (int i = 0; i < 3; ++i)
           f(n, i) = s[i];

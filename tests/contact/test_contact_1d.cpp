@@ -432,10 +432,9 @@ GaugeHistory runJointedWave(double a_mm, double gap, const std::string &name)
 // Fig. 2 of the paper in 1D (spec 14.1, sets 2 and 3): implicit joints a = 1e-5 m and 1e-4 m,
 // 1 cell per block, and the solid bar; gauge velocity at 80 mm. Arrival = first v > 100 m/s.
 //
-// The impactor starts 0.2 mm short (impact at 0.2 us, subtracted from the arrival): a new CP's
-// closure comes from the half-step geometry (D12, as in 2D and 3D), so bodies that touch at t = 0
-// with 1 km/s between them would start with u0 = v dt/2 = 56 um, past a = 10 um (the run stops).
-// With the gap the CP starts open at u0 = -gap + v dt/2 and closes dt/2 early.
+// The impactor starts 0.2 mm short (impact at 0.2 us, subtracted from the arrival); a new CP's
+// closure is the overlap at x^n (docs/theory.md, contact runtime, item 12), so the CP starts
+// open at u0 = -gap, as in bar1d.py (which starts touching joints at u = 0).
 //
 // References (/usr/bin/python3):
 // 1. spec 14.1's table, from scp-ref/bar1d.py as published: solid 14.78 us / 495 m/s; a = 1e-5:
@@ -443,15 +442,14 @@ GaugeHistory runJointedWave(double a_mm, double gap, const std::string &name)
 //    linear sigma = M (L/L0 - 1) against our hypoelastic midpoint update (sigma = M ln(L/L0)):
 //    5.6 % stiffer at the 11 % strain of the impact, so the front runs faster; q = 0.3 rho c0
 //    |dv| against 0.3 rho c_old |dv| L0/L; a fixed dt = S h/c0 against S min(L/c); no gap; and
-//    the new CP at u = 0. bar1d.py with each of our choices switched on in turn (the mirror
-//    script, helpers/contact1d-bar1d-mirror.py) moves the a = 1e-5 arrival by +0.22 (gap), -0.11
-//    (closure at the half step), -0.22 (law), -0.11 us (viscosity) and the a = 1e-4 peak by -1.4 %
-//    +3.1 % +0.2 % +0.4 %. Tolerance: arrival 0.5 us (4.5 steps, 3 % of the a = 1e-5 arrival),
-//    peak 4 %.
-// 2. the same script with all of our choices (gap 0.2 mm, our law, viscosity, dt, closure rule):
-//    a = 1e-5: 15.703020 us / 495.89871 m/s, 551 steps; a = 1e-4: 33.647585 us / 164.53449 m/s,
-//    548 steps. The same algorithm in other floating-point order: the same step count and
-//    arrival step (tolerance 1 ns, 1 % of a step), the peak to 1e-6.
+//    the new CP at u = 0 (ours too). bar1d.py with each of our choices switched on in turn (the
+//    mirror script, helpers/contact1d-bar1d-mirror.py) moves the a = 1e-5 arrival by +0.22 (gap),
+//    -0.22 (law), -0.11 us (viscosity) and the a = 1e-4 peak by -1.4 % +0.2 % +0.4 %. Tolerance:
+//    arrival 0.5 us (4.5 steps, 3 % of the a = 1e-5 arrival), peak 4 %.
+// 2. the same script with all of our choices (gap 0.2 mm, our law, viscosity, dt; u0half=False,
+//    the closure at x^n): a = 1e-5: 15.811218 us / 495.92629 m/s, 551 steps; a = 1e-4:
+//    33.647513 us / 162.57697 m/s, 548 steps. The same algorithm in other floating-point order:
+//    the same step count and arrival step (tolerance 1 ns, 1 % of a step), the peak to 1e-6.
 TEST(Contact1D, JointedWaveFig2)
 {
   const double gap = 2e-4, v0 = 1000;
@@ -465,8 +463,8 @@ TEST(Contact1D, JointedWaveFig2)
     double a_mm, bar1d_arrival, bar1d_peak, mirror_arrival, mirror_peak;
     long mirror_steps;
   };
-  const Case cases[] = {{0.01, 15.889e-6, 496.03, 15.703020e-6, 495.89871, 551},
-                        {0.1, 33.444e-6, 159.71, 33.647585e-6, 164.53449, 548}};
+  const Case cases[] = {{0.01, 15.889e-6, 496.03, 15.811218e-6, 495.92629, 551},
+                        {0.1, 33.444e-6, 159.71, 33.647513e-6, 162.57697, 548}};
   GaugeHistory g[2];
   for (int k = 0; k < 2; ++k)
   {

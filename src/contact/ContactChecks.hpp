@@ -1,0 +1,78 @@
+#pragma once
+/// \file ContactChecks.hpp
+/// \brief The divergence test of step 9 (what stops a run) and the closure limits shared with
+/// the candidate rules of detection (scp-method.md 3.2, 3.4, 6.2). Device-callable.
+#include "contact/ContactParams.hpp"
+
+namespace scpdyn
+{
+
+/// \brief Closure, in apertures, beyond which a joint counts as diverged [-].
+///
+/// Not 1: with the modulus cap (6.2, D8) the closure is no longer bounded by a, and stable
+/// explicit runs pass it for a step or two (bar1d.py's explicit Fig. 2 references at C_safe =
+/// 0.5 reach u/a = 1.08 at the impact joint). At 2 a the capped law's stress is ~Emax
+/// (1e4 E0 by default, TPa for rock joints): only a diverging update gets there.
+constexpr Real kDivergedClosure = 2.0;
+
+/// \brief A CP whose contact area is below this fraction of its smaller face is vanishing: its
+/// faces slide apart, its force and stored energy scale with Ac (6.6) and its tracked closure
+/// takes in the sliding velocity through a tilting normal, so its closure proves nothing [-].
+constexpr Real kVanishingArea = 0.1;
+
+/// \brief Net energy the joints (explicit and implicit CPs) may give the mesh, as a fraction of
+/// the most they ever took in or held, before the contact counts as diverged [-].
+///
+/// A joint law only stores or dissipates the work done on it (6.7), so the joints' net work W
+/// stays >= 0 (>= about -Psi when the leapfrog books the work a step late). Every stable run
+/// measured keeps W >= 0 (Fig. 5 implicit S = 0.5 and explicit S = 0.05, 0.1 and with the limit
+/// (19) at S = 0.5, the Fig. 2 strips, the Fig. 7 sliding impact); the unstable explicit update
+/// of Fig. 5 at S = 0.5 with C_safe off drives W to -11 W_peak at its third cycle. The
+/// velocity-constraint CPs are left out: ties do no work, and their booked work is round-off
+/// and leapfrog lag of either sign.
+constexpr Real kEnergyCreation = 1.0;
+
+/// \brief True when the joints have created energy: net joint work `work` below
+/// -kEnergyCreation * max(`work_peak`, `stored_peak`) (the largest net work and stored energy
+/// so far, this cycle included), beyond the round-off 1e-12 `gross` of the summed |work| [J].
+KOKKOS_INLINE_FUNCTION bool contactCreatedEnergy(Real work, Real work_peak, Real stored_peak,
+                                                 Real gross)
+{
+  const Real limit = kEnergyCreation * ContactMath::max(work_peak, stored_peak) + 1e-12 * gross;
+  return work < -limit || !(work - work == 0);
+}
+
+/// \brief Why a CP failed the divergence test.
+enum CpCheck : int
+{
+  CpCheckOk = 0,
+  CpCheckNonFinite = 1, ///< a force component or the closure/force history is NaN or infinite
+  CpCheckClosure = 2    ///< a joint's closure passed kDivergedClosure apertures
+};
+
+/// \brief Divergence test of one CP after its force (step 9). `F`: the CP force [N]; `joint`:
+/// explicit or implicit option (the constraint options keep u at the geometric gap); `active`:
+/// status != inactive (3.4); `Ac`, `A1`, `A2`: contact and face areas.
+KOKKOS_INLINE_FUNCTION int checkCp(const JointParams &p, const CpState &s, const Real F[3],
+                                   bool joint, bool active, Real Ac, Real A1, Real A2)
+{
+  bool finite = s.u - s.u == 0 && s.Fn - s.Fn == 0; // false for NaN and infinity
+  for (int d = 0; d < 3; ++d)
+    finite = finite && F[d] - F[d] == 0 && s.Fs[d] - s.Fs[d] == 0;
+  if (!finite)
+    return CpCheckNonFinite;
+  const bool vanishing = !(Ac >= kVanishingArea * ContactMath::min(A1, A2));
+  if (joint && active && !vanishing && s.u > kDivergedClosure * p.a)
+    return CpCheckClosure;
+  return CpCheckOk;
+}
+
+/// \brief Penetration a candidate pair may have and stay a candidate (rule 5 of 3.2, delta_pen):
+/// half the smaller face plus the closure the divergence test still accepts, so a joint closed
+/// by more than half a face (a fine mesh, a soft joint) keeps its CP [m].
+KOKKOS_INLINE_FUNCTION Real candidatePenetration(Real h1, Real h2, Real a)
+{
+  return 0.5 * ContactMath::min(h1, h2) + kDivergedClosure * a;
+}
+
+} // namespace scpdyn

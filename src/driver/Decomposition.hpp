@@ -1,0 +1,43 @@
+#pragma once
+/// \file Decomposition.hpp
+/// \brief What a decomposed Solver keeps about its piece of the mesh (issue 4): the maps to the
+/// global numbering, which nodes this rank owns (for sums and output), the shared-node sum
+/// plan of steps 7 and 10b, and the arrays step 10b needs. Null in the serial Solver.
+#include "core/Types.hpp"
+#include "parallel/GhostFaces.hpp"
+#include "parallel/NodeHalo.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace scpdyn
+{
+
+struct SolverDecomposition
+{
+  std::vector<Index> global_node;    ///< local node -> global node (ascending)
+  std::vector<Index> global_element; ///< local mesh element -> global mesh element (ascending)
+  std::vector<char> owned;           ///< per local node: 1 if this rank owns it
+  IndexView owned_device;            ///< the same on device (sums over nodes)
+  long global_nodes = 0, global_elements = 0;
+  /// Per local device element: its index in the serial device order (elements grouped by
+  /// type, ascending global id within a type), which is the cell order of the output files.
+  std::vector<Index> output_cell;
+  std::unique_ptr<NodeHalo> halo;
+  IndexView shared_nodes; ///< local ids of the shared nodes
+  /// Step 10b: f_int of the shared nodes after step 7 (the complete internal force), and the
+  /// partial contact / pressure forces of this rank, summed over the copies in their own arrays
+  /// so no force is counted twice.
+  VectorView f_int_after_7, f_contact, f_load;
+  /// Contact (steps 4 and 8): the ghost faces and nodes, this rank's own contact faces and the
+  /// shared nodes on the host.
+  std::unique_ptr<GhostFaces> ghosts;
+  std::vector<GhostFaceDesc> own_faces;
+  std::vector<Index> shared_host;
+  /// Traffic accounting (docs/scaling.md): shared-node bytes sent during set-up (excluded from
+  /// the per-cycle figure) and bytes of the ghost-face rebuilds so far.
+  std::uint64_t halo_bytes_setup = 0, rebuild_bytes = 0;
+};
+
+} // namespace scpdyn

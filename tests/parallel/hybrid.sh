@@ -1,0 +1,55 @@
+#!/bin/bash
+# Hybrid MPI x OpenMP (issue 4): every deck of tests/parallel/decks/ run as 1 rank x 1 thread,
+# 2 ranks x 1 thread and 1 rank x 2 threads; history.csv and gauges.csv of the last two must
+# agree with the first within 1e-9 (relative to the magnitude of each energy group, momentum
+# vector and gauge vector or tensor; see test_solver_decomposed.cpp for why such scales).
+#   hybrid.sh SCPDYN MPIEXEC WORKDIR
+set -euo pipefail
+scpdyn=$1 mpiexec=$2 work=$3
+here=$(cd "$(dirname "$0")" && pwd)
+mkdir -p "$work"
+export OMP_PROC_BIND=false
+status=0
+for deck in "$here"/decks/*.yaml; do
+  name=$(basename "$deck" .yaml)
+  OMP_NUM_THREADS=1 "$scpdyn" "$deck" -o "$work/$name.1x1" > /dev/null 2>&1
+  OMP_NUM_THREADS=1 "$mpiexec" -np 2 --oversubscribe "$scpdyn" "$deck" -o "$work/$name.2x1" \
+    > /dev/null 2>&1
+  OMP_NUM_THREADS=2 "$scpdyn" "$deck" -o "$work/$name.1x2" > /dev/null 2>&1
+  python3 - "$work/$name" <<'PY' || status=1
+import csv, sys
+base = sys.argv[1]
+def read(path):
+    rows = list(csv.reader(open(path)))
+    return rows[0], [[float(x) for x in r] for r in rows[1:]]
+def kind(c):
+    if c in ('kinetic', 'internal', 'hourglass', 'contact', 'external_work', 'contact_dissipation'):
+        return 'energy'
+    if c.startswith('momentum'):
+        return 'momentum'
+    if ':' not in c:
+        return c
+    g, q = c.split(':', 1)
+    k = ('velocity' if q[0] == 'v' else 'displacement' if q[0] == 'd' and len(q) == 2 else
+         'position' if len(q) == 1 else 'stress' if q[0] == 's' or q == 'pressure' else q)
+    return g + ':' + k
+worst, where = 0.0, ''
+for run in ('2x1', '1x2'):
+    for f in ('history.csv', 'gauges.csv'):
+        h, a = read(base + '.1x1/' + f)
+        h2, b = read(base + '.' + run + '/' + f)
+        if h != h2 or len(a) != len(b):
+            print('%s %s %s: columns or rows differ' % (base, run, f)); sys.exit(1)
+        for j, c in enumerate(h):
+            if c in ('cycle', 'energy_balance_error'):
+                continue
+            cols = [k for k in range(len(h)) if kind(h[k]) == kind(c)]
+            scale = max(max(abs(r[k]) for r in a for k in cols), 1e-300)
+            e = max(abs(x[j] - y[j]) for x, y in zip(a, b)) / scale
+            if e > worst:
+                worst, where = e, '%s %s' % (run, c)
+print('%-40s worst relative difference %.3e (%s)' % (base.split('/')[-1], worst, where))
+sys.exit(0 if worst < 1e-9 else 1)
+PY
+done
+exit $status
