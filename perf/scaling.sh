@@ -46,6 +46,7 @@ run() { # run NAME RANKS THREADS: the fastest of RUNS runs -> $out/NAME.summary.
         mpirun -np "$ranks" --oversubscribe --bind-to "${BIND:-core}" \
         "$build/bin/scpdyn" "$out/${name%%.*}.yaml" -o "$dir" > /dev/null 2> "$dir.log" || { cat "$dir.log"; exit 1; }
     fi
+    rm -f "$dir"/*.h5  # ~100 MB of fields per run; the summary and histories are what counts
     local t
     t=$("$py" -c "import json; print(json.load(open('$dir/summary.json'))['cycle_wall_time'])")
     echo "  $name ${ranks}x$threads: $t s" >&2

@@ -16,7 +16,9 @@ Measures (verification.md T7b; docs/verification_materials.md):
   L_f  mean of the top node's y over the last 40 us (the wall holds the impact face, so the
        rod rings elastically about its unloaded shape: +-0.4 % steel, +-0.1 % copper);
   D_f  twice the largest radius of the nodes that started on the impact face, final frame;
-  energy: KE0 -> internal (plastic work, heat, elastic) + residual KE; balance error.
+  energy: KE0 -> internal (plastic work, heat, elastic) + residual KE; balance error;
+  profile: side radius at 10/25/40/55/70 % of the test length against the digitized test
+       profile (TEST_PROFILES), drawn on the final-shape panel too.
 """
 import argparse
 import os
@@ -40,6 +42,46 @@ CASES = [
 T7A = ("taylor_t7a_cu_227", "copper bilinear J2 (T7a), 227 m/s", 32.4e-3, 6.4e-3, 21.55e-3, 14.2e-3)
 T7A_BAND = ((21.2e-3, 21.9e-3), (13.6e-3, 14.8e-3))
 WINDOW = 40e-6  # averaging window of the final length [s]
+# Measured final side profiles (radius, height) [mm], digitized by B. Banerjee
+# (github.com/bbanerjee/HighRateExptData, TaylorData/DAT): copper 190 m/s from Zerilli &
+# Armstrong (1987) (taylorCuZerilliArmstrong.dat), 4340 at 208 m/s from Johnson & Cook (1983)
+# p. 546 (taylorStJohnsonCook208.dat). Digitizing error ~1-3 % (the copper foot reads 13.68
+# mm here against the quoted 13.56 mm).
+TEST_PROFILES = {
+    "taylor_ofhc_190": np.array([
+        [6.842, 0.000], [6.408, 0.584], [6.011, 1.137], [5.615, 1.657], [5.396, 2.014],
+        [5.107, 3.214], [5.074, 4.061], [5.000, 5.782], [4.892, 7.536], [4.748, 8.639],
+        [4.529, 9.970], [4.314, 11.464], [4.099, 12.797], [3.917, 13.868], [3.880, 15.005],
+        [3.810, 16.205]]),
+    "taylor_4340_208": np.array([
+        [5.528, 0.000], [4.780, 2.097], [4.300, 4.021], [4.033, 5.998], [3.979, 8.094],
+        [3.881, 10.105], [3.881, 12.150], [3.748, 14.255], [3.783, 16.300], [3.774, 18.311],
+        [3.765, 20.365], [3.810, 22.496]]),
+}
+PROFILE_FRACTIONS = (0.1, 0.25, 0.4, 0.55, 0.7)  # heights (fractions of the test L_f) compared
+
+
+def side_profile(m):
+    """Final side profile (radius, height) [mm] of the nodes that started on the rod's side."""
+    f, last = m["fields"], m["last"]
+    r0 = f.coords0[:, 0]
+    side = np.abs(r0 - r0.max()) < 1e-9
+    x = 1e3 * last["coords"][side]
+    order = np.argsort(x[:, 1])
+    return x[order, 0], x[order, 1]
+
+
+def profile_table(name, m):
+    """Radius of the run and of the test at fixed heights (fractions of the test length)."""
+    if name not in TEST_PROFILES:
+        return []
+    test = TEST_PROFILES[name]
+    r, y = side_profile(m)
+    rows = []
+    for fr in PROFILE_FRACTIONS:
+        h = fr * test[-1, 1]
+        rows.append((h, float(np.interp(h, y, r)), float(np.interp(h, test[:, 1], test[:, 0]))))
+    return rows
 
 
 def measure(out, averaged=True):
@@ -77,6 +119,10 @@ def plot(out, name, label, L0, D0, Lx, Dx, m, summary):
         pc = PolyCollection(q, array=eps, cmap="viridis", edgecolors="k", linewidths=0.1)
         ax.add_collection(pc)
     fig.colorbar(pc, ax=ax, label="equivalent plastic strain", shrink=0.8)
+    if name in TEST_PROFILES:
+        tp = TEST_PROFILES[name]
+        ax.plot(tp[:, 0], tp[:, 1], "r-", lw=1.2, label="test profile (digitized)")
+        ax.plot(-tp[:, 0], tp[:, 1], "r-", lw=1.2)
     ax.plot([-D0 / 2e-3, D0 / 2e-3, D0 / 2e-3, -D0 / 2e-3, -D0 / 2e-3],
             [0, 0, L0 * 1e3, L0 * 1e3, 0], "k:", lw=0.8, label="initial")
     ax.axhline(Lx * 1e3, color="r", ls="--", lw=1, label=f"reference L_f = {Lx * 1e3:.2f} mm")
@@ -131,6 +177,10 @@ def report(name, label, Lx, Dx, m, summary):
     print(f"  L_f {1e3 * m['L']:.3f} mm (reference {1e3 * Lx:.2f}, error {100 * (m['L'] / Lx - 1):+.2f} %{ring})")
     print(f"  D_f {1e3 * m['D']:.3f} mm (reference {1e3 * Dx:.2f}, error {100 * (m['D'] / Dx - 1):+.2f} %)")
     print(f"  EPS_max {m['eps_max']:.2f}, T_max {m['T_max']:.0f} K, lowest node y {m['min_y']:.1e} m")
+    rows = profile_table(name, m)
+    if rows:
+        print("  side radius [mm] at height y (run / test): " + ", ".join(
+            f"y {h:.1f}: {rs:.2f} / {rt:.2f} ({100 * (rs / rt - 1):+.1f} %)" for h, rs, rt in rows))
     print(f"  KE0 {m['ke0']:.3f} J/rad -> internal {m['ie_end']:.3f} "
           f"({100 * m['ie_end'] / m['ke0']:.1f} %) + residual KE {m['ke_end']:.3f} + hourglass "
           f"{m['hg_end']:.2e}; balance error max {100 * m['balance']:.3f} %")

@@ -115,6 +115,7 @@ void Outputs::begin()
       for (int a = 0; dd && a < kMaxElementNodes; ++a)
         rows.push_back(a < nodesPerElement(g.type) ? int(dd->global_node[size_t(conn(e, a))]) : -1);
     }
+  FieldDistribution dist;
   if (dd)
   {
     std::vector<long> node_rows(dd->owned.size(), -1), cell_rows;
@@ -123,16 +124,22 @@ void Outputs::begin()
         node_rows[n] = dd->global_node[n];
     for (Index c : dd->output_cell)
       cell_rows.push_back(c);
-    _gather = std::make_unique<OutputGather>(_solver.comm(), dd->global_nodes, dd->global_elements,
-                                             std::move(node_rows), std::move(cell_rows));
-    desc.coords0 = _gather->nodes(desc.coords0, 3);
-    desc.cell_types = _gather->cellsInt(desc.cell_types, 1);
-    rows = _gather->cellsInt(rows, kMaxElementNodes);
+    dist.comm = _solver.comm();
+    dist.node_rows = node_rows;
+    dist.cell_rows = cell_rows;
+    // the mesh goes to rank 0 once; the frames are written collectively (FieldDistribution)
+    const OutputGather gather(_solver.comm(), dd->global_nodes, dd->global_elements,
+                              std::move(node_rows), std::move(cell_rows));
+    desc.coords0 = gather.nodes(desc.coords0, 3);
+    desc.cell_types = gather.cellsInt(desc.cell_types, 1);
+    rows = gather.cellsInt(rows, kMaxElementNodes);
     desc.connectivity.clear();
     for (size_t c = 0; c < desc.cell_types.size(); ++c)
       for (int a = 0; a < nodesPerElement(ElementType(desc.cell_types[c])); ++a)
         desc.connectivity.push_back(rows[c * kMaxElementNodes + size_t(a)]);
   }
+  _fields = dd ? std::make_unique<FieldWriter>(_dir, desc, dist)
+              : std::make_unique<FieldWriter>(_dir, desc);
   if (!root())
   {
     writeFrame();
@@ -141,7 +148,6 @@ void Outputs::begin()
     _next_history = deck.history_interval;
     return;
   }
-  _fields = std::make_unique<FieldWriter>(_dir, desc);
   if (_has_contacts)
     _contacts = std::make_unique<PointSetWriter>(_dir, "contacts");
 
@@ -203,7 +209,7 @@ void Outputs::writeFrame()
   for (const auto &m : _solver.materialParams())
     names.push_back(historyNames(m));
   std::map<std::string, std::vector<double>> named;
-  if (_gather) // the fields every rank writes: those of the materials used on any rank
+  if (_solver.decomposition()) // the fields every rank writes: those of the materials used on any rank
     for (size_t m = 0; m < names.size(); ++m)
       for (const auto &n : names[m])
         if (_material_used[m] && !n.empty())
@@ -224,16 +230,6 @@ void Outputs::writeFrame()
                     {"plastic_strain", ep}, {"part", pt}};
   for (auto &kv : named)
     f.cell_scalars.push_back({kv.first, std::move(kv.second)});
-  if (_gather)
-  {
-    f.coords = _gather->nodes(f.coords, 3);
-    for (auto &v : f.node_vectors)
-      v.second = _gather->nodes(v.second, 3);
-    for (auto &c : f.cell_scalars)
-      c.second = _gather->cells(c.second, 1);
-    for (auto &c : f.cell_tensors6)
-      c.second = _gather->cells(c.second, 6);
-  }
   if (_fields)
     _fields->write(f);
   writeContactFrame();
@@ -367,11 +363,11 @@ void Outputs::finish(const std::string &error)
       decomposition.add(names[k], st);
     }
   }
+  _fields->close(); // collective in a decomposed run
   if (!root())
     return;
   _history->close();
   _gauges->close();
-  _fields->close();
   if (_contacts)
     _contacts->close();
   JsonObject timers, timer_stats;

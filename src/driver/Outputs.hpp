@@ -39,7 +39,6 @@ private:
   std::unique_ptr<FieldWriter> _fields;
   std::unique_ptr<PointSetWriter> _contacts; ///< contacts.xmf/h5, with contact surfaces only
   bool _has_contacts = false;
-  std::unique_ptr<OutputGather> _gather;     ///< decomposed runs: fields to rank 0
   std::vector<int> _material_used;           ///< per material: used by an element on any rank
   std::unique_ptr<CsvWriter> _history, _gauges;
   double _next_field = 0, _next_history = 0;

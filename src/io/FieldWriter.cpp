@@ -8,6 +8,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <sstream>
@@ -65,8 +66,10 @@ void checkSize(const NamedField &f, std::size_t expected, const char *kind)
 
 } // namespace
 
-FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh)
-    : _h5_path(dir + "/" + kH5Name), _xmf_path(dir + "/" + kXmfName), _mesh(mesh)
+namespace
+{
+/// The mesh checks of both constructors; returns the single cell type or -1 (mixed).
+int validateMesh(const FieldMeshDesc &mesh)
 {
   if (mesh.dim < 1 || mesh.dim > 3)
     throw std::invalid_argument(fieldError("dim must be 1, 2 or 3"));
@@ -74,40 +77,113 @@ FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh)
     throw std::invalid_argument(fieldError("coords0 must hold n_nodes*3 > 0 values"));
   if (mesh.cell_types.empty())
     throw std::invalid_argument(fieldError("mesh has no cells"));
-  _num_nodes = int(mesh.coords0.size() / 3);
-  _num_cells = int(mesh.cell_types.size());
+  const int num_nodes = int(mesh.coords0.size() / 3);
 
   std::size_t expected_conn = 0;
-  _uniform_type = mesh.cell_types[0];
+  int uniform = mesh.cell_types[0];
   for (int t : mesh.cell_types)
   {
     if (t < 0 || t > 3)
       throw std::invalid_argument(fieldError("unknown cell type " + std::to_string(t)));
     expected_conn += std::size_t(nodesPerElement(ElementType(t)));
-    if (t != _uniform_type)
-      _uniform_type = -1;
+    if (t != uniform)
+      uniform = -1;
   }
   if (mesh.connectivity.size() != expected_conn)
     throw std::invalid_argument(
         fieldError("connectivity has " + std::to_string(mesh.connectivity.size()) +
                    " entries, cell types need " + std::to_string(expected_conn)));
   for (int n : mesh.connectivity)
-    if (n < 0 || n >= _num_nodes)
+    if (n < 0 || n >= num_nodes)
       throw std::invalid_argument(fieldError("connectivity references node " + std::to_string(n) +
-                                             " outside [0, " + std::to_string(_num_nodes) + ")"));
+                                             " outside [0, " + std::to_string(num_nodes) + ")"));
 
-  ensureDirectory(dir);
+  return uniform;
+}
+} // namespace
+
+FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh)
+    : _h5_path(dir + "/" + kH5Name), _xmf_path(dir + "/" + kXmfName), _mesh(mesh)
+{
+  _uniform_type = validateMesh(mesh);
+  _num_nodes = int(mesh.coords0.size() / 3);
+  _num_cells = int(mesh.cell_types.size());
+  _connectivity_length = mesh.connectivity.size();
+  open(dir);
+}
+
+FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh,
+                         const FieldDistribution &dist)
+    : _h5_path(dir + "/" + kH5Name), _xmf_path(dir + "/" + kXmfName), _mesh(mesh),
+      _distributed(true), _comm(dist.comm)
+{
+  MPI_Comm_rank(_comm, &_rank);
+  // rank 0 holds the mesh: it checks it (the verdict goes to every rank) and sends the sizes
+  std::string error;
+  if (root())
+    try
+    {
+      _uniform_type = validateMesh(mesh);
+    }
+    catch (const std::invalid_argument &e)
+    {
+      error = e.what();
+    }
+  long sizes[5] = {long(error.size()), long(mesh.coords0.size() / 3), long(mesh.cell_types.size()),
+                   long(_uniform_type), long(mesh.connectivity.size())};
+  MPI_Bcast(sizes, 5, MPI_LONG, 0, _comm);
+  if (sizes[0] > 0)
   {
-    Handle fapl(makeFileAccessList(), H5Pclose);
+    error.resize(size_t(sizes[0]));
+    MPI_Bcast(&error[0], int(sizes[0]), MPI_CHAR, 0, _comm);
+    throw std::invalid_argument(error);
+  }
+  _num_nodes = int(sizes[1]), _num_cells = int(sizes[2]), _uniform_type = int(sizes[3]);
+  _connectivity_length = size_t(sizes[4]);
+  MPI_Bcast(&_mesh.dim, 1, MPI_INT, 0, _comm);
+  // ascending rows, as runs: owned nodes only (each node is written by one rank)
+  auto plan = [](const std::vector<long> &rows, RowPlan &p) {
+    for (size_t i = 0; i < rows.size(); ++i)
+      if (rows[i] >= 0)
+        p.local.push_back(long(i));
+    std::sort(p.local.begin(), p.local.end(), [&rows](long a, long b) { return rows[size_t(a)] < rows[size_t(b)]; });
+    for (long i : p.local)
+    {
+      const auto r = static_cast<unsigned long long>(rows[size_t(i)]);
+      if (!p.start.empty() && p.start.back() + p.length.back() == r)
+        ++p.length.back();
+      else
+        p.start.push_back(r), p.length.push_back(1);
+    }
+  };
+  plan(dist.node_rows, _node_plan);
+  plan(dist.cell_rows, _cell_plan);
+  _local_nodes = dist.node_rows.size();
+  _local_cells = dist.cell_rows.size();
+  open(dir);
+}
+
+void FieldWriter::open(const std::string &dir)
+{
+  if (root())
+    ensureDirectory(dir);
+  if (_distributed)
+    MPI_Barrier(_comm); // the directory exists before any rank opens the file
+  {
+    Handle fapl(makeFileAccessList(_distributed ? &_comm : nullptr), H5Pclose);
     _file = createFieldFile(_h5_path, fapl);
   }
   _dxpl = H5Pcreate(H5P_DATASET_XFER);
   try
   {
     check(_dxpl < 0 ? -1 : 0, "create a transfer property list", _h5_path);
+    if (_distributed)
+      check(H5Pset_dxpl_mpio(_dxpl, H5FD_MPIO_COLLECTIVE), "select collective transfers",
+            _h5_path);
     writeMesh();
     check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush the mesh", _h5_path);
-    writeXdmf();
+    if (root())
+      writeXdmf();
   }
   catch (...)
   {
@@ -118,6 +194,35 @@ FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh)
     _file = _dxpl = -1;
     throw;
   }
+}
+
+template <class T>
+void FieldWriter::writeRows(std::int64_t loc, const std::string &name, const RowPlan *plan,
+                            std::size_t rows, int comps, const T *data)
+{
+  std::vector<hsize_t> dims{hsize_t(rows)};
+  if (comps > 1)
+    dims.push_back(hsize_t(comps));
+  if (!_distributed)
+  {
+    writeDataset(loc, name, dims, data, _dxpl, _h5_path);
+    return;
+  }
+  if (!plan) // written whole by rank 0
+  {
+    writeDatasetRows(loc, name, dims, RowRuns::all(root() ? hsize_t(rows) : 0), data, _dxpl,
+                     _h5_path);
+    return;
+  }
+  RowRuns runs;
+  runs.start.assign(plan->start.begin(), plan->start.end());
+  runs.length.assign(plan->length.begin(), plan->length.end());
+  runs.rows = hsize_t(plan->local.size());
+  std::vector<T> packed(plan->local.size() * size_t(comps));
+  for (size_t k = 0; k < plan->local.size(); ++k)
+    for (int c = 0; c < comps; ++c)
+      packed[k * size_t(comps) + size_t(c)] = data[size_t(plan->local[k]) * size_t(comps) + size_t(c)];
+  writeDatasetRows(loc, name, dims, runs, packed.data(), _dxpl, _h5_path);
 }
 
 FieldWriter::~FieldWriter()
@@ -145,21 +250,18 @@ void FieldWriter::close()
 
 void FieldWriter::writeMesh()
 {
+  // a decomposed run: rank 0 holds the whole mesh and writes it; the others join the
+  // collective dataset creation and transfers with nothing selected
   Handle g(createGroup(_file, "mesh", _h5_path), H5Gclose);
-  const hsize_t n = hsize_t(_num_nodes), ne = hsize_t(_num_cells);
-  writeDataset(g, "coords0", {n, 3}, _mesh.coords0.data(), _dxpl, _h5_path);
-  writeDataset(g, "cell_types", {ne}, _mesh.cell_types.data(), _dxpl, _h5_path);
-  writeDataset(g, "connectivity", {hsize_t(_mesh.connectivity.size())}, _mesh.connectivity.data(),
-               _dxpl, _h5_path);
+  const size_t n = size_t(_num_nodes), ne = size_t(_num_cells);
+  writeRows(g, "coords0", nullptr, n, 3, _mesh.coords0.data());
+  writeRows(g, "cell_types", nullptr, ne, 1, _mesh.cell_types.data());
+  writeRows(g, "connectivity", nullptr, _connectivity_length, 1, _mesh.connectivity.data());
 
   // XDMF wants (ne, npe) for one type, or type code [+ node count for Polyline] + nodes.
   std::vector<int> topo;
-  std::vector<hsize_t> topo_dims;
   if (_uniform_type >= 0)
-  {
     topo = _mesh.connectivity;
-    topo_dims = {ne, hsize_t(nodesPerElement(ElementType(_uniform_type)))};
-  }
   else
   {
     std::size_t offset = 0;
@@ -173,10 +275,15 @@ void FieldWriter::writeMesh()
                   _mesh.connectivity.begin() + long(offset + npe));
       offset += std::size_t(npe);
     }
-    topo_dims = {hsize_t(topo.size())};
   }
-  _topology_length = topo.size();
-  writeDataset(g, "topology", topo_dims, topo.data(), _dxpl, _h5_path);
+  long length = long(topo.size());
+  if (_distributed)
+    MPI_Bcast(&length, 1, MPI_LONG, 0, _comm);
+  _topology_length = size_t(length);
+  if (_uniform_type >= 0)
+    writeRows(g, "topology", nullptr, ne, nodesPerElement(ElementType(_uniform_type)), topo.data());
+  else
+    writeRows(g, "topology", nullptr, _topology_length, 1, topo.data());
   writeScalarAttribute(g, "dim", long(_mesh.dim), _h5_path);
   Handle frames(createGroup(_file, "frames", _h5_path), H5Gclose);
 }
@@ -185,7 +292,11 @@ void FieldWriter::write(const FieldFrame &frame)
 {
   if (_file < 0)
     throw std::logic_error(fieldError("write() after close() on '" + _h5_path + "'"));
-  const std::size_t n = std::size_t(_num_nodes), ne = std::size_t(_num_cells);
+  // sizes of this process's arrays: the whole mesh, or a decomposed run's local part
+  const std::size_t n = _distributed ? _local_nodes : std::size_t(_num_nodes);
+  const std::size_t ne = _distributed ? _local_cells : std::size_t(_num_cells);
+  const RowPlan *nodes = _distributed ? &_node_plan : nullptr;
+  const RowPlan *cells = _distributed ? &_cell_plan : nullptr;
   if (frame.coords.size() != n * 3)
     throw std::invalid_argument(fieldError("frame coords have " +
                                            std::to_string(frame.coords.size()) +
@@ -220,6 +331,8 @@ void FieldWriter::write(const FieldFrame &frame)
     checkSize(f, ne * 6, "cell tensor");
     info.attributes.push_back({f.first, true, 6});
   }
+  if (!has_displacement && _distributed)
+    throw std::invalid_argument(fieldError("a decomposed run's frame needs a 'displacement'"));
   if (!has_displacement)
   {
     checkName("displacement", node_names, "node");
@@ -231,24 +344,24 @@ void FieldWriter::write(const FieldFrame &frame)
   Handle g(createGroup(frames, name, _h5_path), H5Gclose);
   writeScalarAttribute(g, "time", frame.time, _h5_path);
   writeScalarAttribute(g, "cycle", frame.cycle, _h5_path);
-  writeDataset(g, "coords", {n, 3}, frame.coords.data(), _dxpl, _h5_path);
+  writeRows(g, "coords", nodes, size_t(_num_nodes), 3, frame.coords.data());
 
   Handle pd(createGroup(g, "point_data", _h5_path), H5Gclose);
   for (const auto &f : frame.node_vectors)
-    writeDataset(pd, f.first, {n, 3}, f.second.data(), _dxpl, _h5_path);
+    writeRows(pd, f.first, nodes, size_t(_num_nodes), 3, f.second.data());
   for (const auto &f : frame.node_scalars)
-    writeDataset(pd, f.first, {n}, f.second.data(), _dxpl, _h5_path);
+    writeRows(pd, f.first, nodes, size_t(_num_nodes), 1, f.second.data());
   if (!has_displacement)
   {
     std::vector<double> u(n * 3);
     for (std::size_t i = 0; i < n * 3; ++i)
       u[i] = frame.coords[i] - _mesh.coords0[i];
-    writeDataset(pd, "displacement", {n, 3}, u.data(), _dxpl, _h5_path);
+    writeRows(pd, "displacement", nodes, size_t(_num_nodes), 3, u.data());
   }
 
   Handle cd(createGroup(g, "cell_data", _h5_path), H5Gclose);
   for (const auto &f : frame.cell_scalars)
-    writeDataset(cd, f.first, {ne}, f.second.data(), _dxpl, _h5_path);
+    writeRows(cd, f.first, cells, size_t(_num_cells), 1, f.second.data());
   std::vector<double> t6(ne * 6);
   for (const auto &f : frame.cell_tensors6)
   {
@@ -257,12 +370,13 @@ void FieldWriter::write(const FieldFrame &frame)
     for (std::size_t e = 0; e < ne; ++e)
       for (int c = 0; c < 6; ++c)
         t6[e * 6 + std::size_t(c)] = f.second[e * 6 + std::size_t(from_voigt[c])];
-    writeDataset(cd, f.first, {ne, 6}, t6.data(), _dxpl, _h5_path);
+    writeRows(cd, f.first, cells, size_t(_num_cells), 6, t6.data());
   }
   // Data on disk before the sidecar points at it: a crash never leaves dangling references.
   check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush frame " + name, _h5_path);
   _frames.push_back(std::move(info));
-  writeXdmf();
+  if (root())
+    writeXdmf();
 }
 
 std::string FieldWriter::topologyXml() const

@@ -13,6 +13,8 @@
 /// Every frame carries a nodal "displacement" (x - x0 unless the frame supplies one), so a
 /// reader that takes the mesh from the first frame only (meshio) can still warp it.
 /// Host-only: the solver copies Views to host and hands plain vectors over.
+#include <mpi.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -29,6 +31,17 @@ struct FieldMeshDesc
   std::vector<double> coords0;   ///< n_nodes*3, initial coordinates (m)
   std::vector<int> cell_types;   ///< per element: ElementType as int (0 Line2 .. 3 Tet4)
   std::vector<int> connectivity; ///< flattened, nodesPerElement(type) ids per element
+};
+
+/// \brief A decomposed run's share of the field file. Every rank holds its local nodes and
+/// cells; `node_rows[i]` is the global row of local node i, or -1 where another rank owns the
+/// node (and writes it); `cell_rows[c]` the global row of local cell c. The mesh itself
+/// (FieldMeshDesc) is given in full on rank 0 and empty on the others.
+struct FieldDistribution
+{
+  MPI_Comm comm = MPI_COMM_NULL;
+  std::vector<long> node_rows;
+  std::vector<long> cell_rows;
 };
 
 /// \brief Named field; the vector length is fixed by its kind (see FieldFrame).
@@ -48,9 +61,8 @@ struct FieldFrame
 
 /// \brief Appends frames to `dir/fields.h5` and keeps `dir/fields.xmf` valid after each one.
 ///
-/// The file is opened through one function taking a file-access property list (serial
-/// sec2 driver today) and every dataset goes through one writer taking a transfer list, so
-/// a collective MPI-IO version only changes those two lists.
+/// Serial runs write through the sec2 driver; decomposed runs (FieldDistribution) open the
+/// same file through MPI-IO and write every dataset collectively, each rank its own rows.
 class FieldWriter
 {
 public:
@@ -58,6 +70,11 @@ public:
   /// `dir/fields.xmf`. Throws std::runtime_error naming the path on I/O failure and
   /// std::invalid_argument on an inconsistent mesh.
   FieldWriter(const std::string &dir, const FieldMeshDesc &mesh);
+  /// \brief The collective version for a decomposed run: every rank of `dist.comm` constructs
+  /// it, each frame is written by all ranks at once (MPI-IO, collective transfers, each rank
+  /// its own rows), so no rank ever holds a global frame. Frames then carry the rank's local
+  /// nodes and cells, every node field including "displacement". Only rank 0 writes the XDMF.
+  FieldWriter(const std::string &dir, const FieldMeshDesc &mesh, const FieldDistribution &dist);
   ~FieldWriter();
   FieldWriter(const FieldWriter &) = delete;
   FieldWriter &operator=(const FieldWriter &) = delete;
@@ -88,7 +105,18 @@ private:
     std::vector<AttributeInfo> attributes;
   };
 
+  /// This rank's rows of a decomposed run, ascending, and where each comes from locally.
+  struct RowPlan
+  {
+    std::vector<long> local; ///< local index of each written row, in ascending row order
+    std::vector<unsigned long long> start, length; ///< the rows as runs
+  };
+  void open(const std::string &dir);
   void writeMesh();
+  template <class T>
+  void writeRows(std::int64_t loc, const std::string &name, const RowPlan *plan, std::size_t rows,
+                 int comps, const T *data);
+  bool root() const { return _rank == 0; }
   void writeXdmf() const;
   std::string topologyXml() const;
 
@@ -98,8 +126,13 @@ private:
   int _uniform_type = -1; ///< the single cell type, or -1 when the mesh mixes types
   std::size_t _topology_length = 0;
   std::int64_t _file = -1; ///< hid_t of the open file (int64 in HDF5 1.10), -1 when closed
-  std::int64_t _dxpl = -1; ///< dataset transfer list (independent now; collective later)
+  std::int64_t _dxpl = -1; ///< dataset transfer list (collective in a decomposed run)
   std::vector<FrameInfo> _frames;
+  bool _distributed = false;
+  MPI_Comm _comm = MPI_COMM_NULL;
+  int _rank = 0;
+  RowPlan _node_plan, _cell_plan;
+  std::size_t _local_nodes = 0, _local_cells = 0, _connectivity_length = 0;
 };
 
 /// \brief One output time of a point set (e.g. the contact points, one per common plane). The

@@ -3,6 +3,9 @@
 /// \brief Internal to src/io: the HDF5 (C API) helpers shared by the field writer and the
 /// contact point-set writer. Host-only.
 #include <hdf5.h>
+#include <mpi.h>
+
+#include <algorithm>
 
 #include <cstdint>
 #include <stdexcept>
@@ -15,15 +18,18 @@ namespace scpdyn
 namespace h5detail
 {
 
-/// File-access list of the serial run: POSIX sec2 driver. A collective version returns an
-/// H5Pset_fapl_mpio list here instead; nothing else in the open path changes.
+/// File-access list: POSIX sec2 driver for a serial run, MPI-IO for a decomposed one.
 /// File locking is off: with it (the 1.10.7+ default) ParaView and h5py cannot open the file
 /// of a running simulation at all. Readers are safe between frames because every frame is
 /// flushed before fields.xmf names it.
-inline hid_t makeFileAccessList()
+/// With `comm` (a decomposed run) the list selects MPI-IO on that communicator.
+inline hid_t makeFileAccessList(const MPI_Comm *comm = nullptr)
 {
   const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (fapl < 0 || H5Pset_fapl_sec2(fapl) < 0)
+  const herr_t driver = fapl < 0 ? -1
+                        : comm   ? H5Pset_fapl_mpio(fapl, *comm, MPI_INFO_NULL)
+                                 : H5Pset_fapl_sec2(fapl);
+  if (driver < 0)
     throw std::runtime_error("FieldWriter: cannot create an HDF5 file-access property list");
 #if (H5_VERS_MAJOR == 1 && H5_VERS_MINOR == 10 && H5_VERS_RELEASE >= 7) || H5_VERSION_GE(1, 12, 1)
   H5Pset_file_locking(fapl, false, true);
@@ -101,6 +107,55 @@ void writeDataset(hid_t loc, const std::string &name, const std::vector<hsize_t>
                                      H5P_DEFAULT),
               H5Dclose);
   const herr_t status = dset < 0 ? -1 : H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, dxpl, data);
+  check(status, "write dataset '" + name + "'", path);
+}
+
+/// \brief Rows of a dataset one rank writes: ascending, disjoint runs [start, start + length).
+struct RowRuns
+{
+  std::vector<hsize_t> start, length;
+  hsize_t rows = 0; ///< sum of the lengths
+  /// \brief All `n` rows (n > 0), or none.
+  static RowRuns all(hsize_t n)
+  {
+    RowRuns r;
+    if (n > 0)
+      r.start = {0}, r.length = {n}, r.rows = n;
+    return r;
+  }
+};
+
+/// \brief Part of a dataset of global shape `dims` (rows x optional components): this rank's
+/// `runs.rows` rows, packed in `data` in ascending row order. Collective over the file's
+/// communicator when `dxpl` is collective (every rank calls it, with or without rows).
+template <class T>
+void writeDatasetRows(hid_t loc, const std::string &name, const std::vector<hsize_t> &dims,
+                      const RowRuns &runs, const T *data, hid_t dxpl, const std::string &path)
+{
+  const bool is_real = std::is_same<T, double>::value;
+  const hid_t mem_type = is_real ? H5T_NATIVE_DOUBLE : H5T_NATIVE_INT;
+  const hid_t file_type = is_real ? H5T_IEEE_F64LE : H5T_STD_I32LE;
+  const hsize_t comps = dims.size() > 1 ? dims[1] : 1;
+  Handle space(H5Screate_simple(int(dims.size()), dims.data(), nullptr), H5Sclose);
+  Handle dset(space < 0 ? -1
+                        : H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT,
+                                     H5P_DEFAULT),
+              H5Dclose);
+  herr_t status = dset < 0 ? -1 : 0;
+  if (status >= 0 && runs.rows == 0)
+    status = H5Sselect_none(space);
+  for (size_t k = 0; status >= 0 && k < runs.start.size(); ++k)
+  {
+    const hsize_t start[2] = {runs.start[k], 0}, count[2] = {runs.length[k], comps};
+    status = H5Sselect_hyperslab(space, k == 0 ? H5S_SELECT_SET : H5S_SELECT_OR, start, nullptr,
+                                 count, nullptr);
+  }
+  const hsize_t mem_dims[1] = {std::max<hsize_t>(runs.rows * comps, 1)};
+  Handle mem(H5Screate_simple(1, mem_dims, nullptr), H5Sclose);
+  if (status >= 0 && runs.rows == 0)
+    status = H5Sselect_none(mem);
+  if (status >= 0)
+    status = H5Dwrite(dset, mem_type, mem, space, dxpl, data);
   check(status, "write dataset '" + name + "'", path);
 }
 

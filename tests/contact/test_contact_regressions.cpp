@@ -1,5 +1,5 @@
 // Regressions of five contact-runtime problems (reported with minimal decks in
-// /work/helpers/contact-bugs, docs/theory.md "Contact: the runtime"):
+// the paper-scene work, docs/verification.md "Runtime issues", docs/theory.md "Contact: the runtime"):
 // 1. a CP created between bodies touching at x^n with a relative velocity started pre-closed by
 //    Vn dt/2 (its (D7) closure came from the half-step geometry);
 // 2. penetration weights of exactly aligned faces drove the faces' zigzag mode (stiffness

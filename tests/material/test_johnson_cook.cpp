@@ -107,5 +107,91 @@ TEST(JohnsonCook, IsothermalWithoutMeltTemperature)
   EXPECT_LT(relErr(mp.mises(), jc), 1e-10);
 }
 
+TEST(JohnsonCook, StrainRateJumpActsWithinTheStep)
+{
+  // A jump of the applied (isochoric) rate from 1e3 to 1e5 /s at eps_p ~ 0.2 (isothermal,
+  // c_p = 0, so only the rate term changes). The rate in the JC term is the step's own
+  // plastic rate d eps_p / dt, solved with the return: on every plastic step the returned
+  // stress is the JC stress at (eps_new, d/dt); after the elastic transient (the stress rise
+  // of ~10 % takes ~2.5e-4 of elastic strain, 0.25 steps of 1e-3) the plastic rate is the
+  // applied one and the stress ratio across the jump is (1 + C ln 1e5) / (1 + C ln 1e3) times
+  // the hardening over the few steps. A lagged (previous-step) or total-rate measure fails
+  // the per-step check at the jump.
+  const MaterialParams p = ofhcCopper(false);
+  MaterialPoint mp(p);
+  auto drive = [&](Real rate, Real dt, int steps) {
+    const Real D[6] = {-rate, 0.5 * rate, 0.5 * rate, 0, 0, 0};
+    for (int n = 0; n < steps; ++n)
+    {
+      const Real eps_old = mp.eps;
+      mp.step(D, dt);
+      const Real d = mp.eps - eps_old;
+      if (d > 0) // returned stress on the surface at the step's own plastic rate
+        EXPECT_LT(relErr(mp.mises(),
+                         jcFormula(90e6, 292e6, 0.31, 0.025, 1, 1e9, mp.eps, d / dt, 294)),
+                  1e-10);
+    }
+  };
+  drive(1e3, 1e-6, 200); // 1e-3 per step to eps ~ 0.2
+  const Real eps_before = mp.eps, q_before = mp.mises();
+  EXPECT_LT(relErr(mp.history[kJcHistRate], 1e3), 5e-3);
+  drive(1e5, 1e-8, 10); // same strain per step, 100x the rate
+  // plastic rate = applied rate once the elastic transient is over (5e-3: the hardening's
+  // elastic share dq/3G per step, as in DrivenPathStaysOnRateDependentSurface)
+  EXPECT_LT(relErr(mp.history[kJcHistRate], 1e5), 5e-3);
+  const Real hard = (90e6 + 292e6 * std::pow(mp.eps, 0.31)) /
+                    (90e6 + 292e6 * std::pow(eps_before, 0.31));
+  const Real rate_jump = (1 + 0.025 * std::log(1e5)) / (1 + 0.025 * std::log(1e3));
+  // both rates are within 0.5 % of the applied ones: 0.025 * 0.005 / 1.29 ~ 1e-4 of stress
+  EXPECT_LT(relErr(mp.mises() / q_before, hard * rate_jump), 2e-4);
+  // and back down to 1e3 /s: the stress falls to the 1e3 /s surface (no memory of 1e5)
+  drive(1e3, 1e-6, 10);
+  EXPECT_LT(relErr(mp.history[kJcHistRate], 1e3), 5e-3);
+  EXPECT_LT(relErr(mp.mises(), jcFormula(90e6, 292e6, 0.31, 0.025, 1, 1e9, mp.eps, 1e3, 294)),
+            2e-4);
+}
+
+TEST(JohnsonCook, AdiabaticSofteningClosedForm)
+{
+  // Perfectly plastic (B = 0), rate-independent (C = 0), linear thermal softening (m = 1):
+  // the flow stress is A (1 - T*), and adiabatic heating dT = chi sigma_y d eps_p / (rho c_p)
+  // gives dT*/d eps_p = k (1 - T*), k = chi A / (rho c_p (T_m - T_r)), so
+  //   T*(eps_p) = 1 - exp(-k eps_p),  sigma_y = A exp(-k eps_p)
+  // (the density changes by < 1e-9 on this isochoric path). A = 1 GPa makes k = 0.245, a 39 %
+  // softening over eps_p = 2. The update heats with the start-of-step temperature (forward
+  // Euler in eps_p): global relative error ~ k d / 2 = 1.2e-5 for d = 1e-4, so 1e-4.
+  MaterialSpec s = makeSpec("johnson_cook", "mie_gruneisen",
+                            {{"density", 8960},
+                             {"shear_modulus", 46e9},
+                             {"A", 1e9},
+                             {"B", 0},
+                             {"n", 1},
+                             {"C", 0},
+                             {"m", 1},
+                             {"melt_temperature", 1356},
+                             {"specific_heat", 383},
+                             {"eos.c0", 3940},
+                             {"eos.s", 1.49},
+                             {"eos.gamma0", 1.96}});
+  const MaterialParams p = makeMaterialParams(s);
+  MaterialPoint mp(p);
+  const Real k = 0.9 * 1e9 / (8960 * 383 * (1356 - 294.0));
+  const Real rate = 1e4, dt = 1e-8; // 1e-4 per step
+  const Real D[6] = {-rate, 0.5 * rate, 0.5 * rate, 0, 0, 0};
+  int checked = 0;
+  while (mp.eps < 2)
+  {
+    mp.step(D, dt);
+    if (mp.eps < 0.05)
+      continue;
+    const Real Tstar = (mp.history[kJcHistTemperature] - 294) / (1356 - 294);
+    EXPECT_LT(relErr(Tstar, 1 - std::exp(-k * mp.eps)), 1e-4) << "eps_p " << mp.eps;
+    EXPECT_LT(relErr(mp.mises(), 1e9 * std::exp(-k * mp.eps)), 1e-4) << "eps_p " << mp.eps;
+    ++checked;
+  }
+  EXPECT_GT(checked, 10000);
+  EXPECT_NEAR(mp.mises() / 1e9, std::exp(-2 * k), 1e-3); // 0.61 at eps_p = 2
+}
+
 } // namespace
 } // namespace scpdyn::test

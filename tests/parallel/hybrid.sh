@@ -51,5 +51,32 @@ for run in ('2x1', '1x2'):
 print('%-40s worst relative difference %.3e (%s)' % (base.split('/')[-1], worst, where))
 sys.exit(0 if worst < 1e-9 else 1)
 PY
+  # fields.h5: the 2-rank file is written collectively (MPI-IO, each rank its own rows); every
+  # dataset of every frame must match the serial file: integers exactly, reals within 1e-9 of
+  # the dataset's largest magnitude (the same round-off as the histories above)
+  /usr/bin/python3 - "$work/$name" <<'PY' || status=1
+import sys
+import h5py, numpy as np
+base = sys.argv[1]
+a, b = h5py.File(base + '.1x1/fields.h5', 'r'), h5py.File(base + '.2x1/fields.h5', 'r')
+names = []
+a.visititems(lambda n, o: names.append(n) if isinstance(o, h5py.Dataset) else None)
+worst, where, bad = 0.0, '', []
+for n in names:
+    if n not in b:
+        bad.append(n + ' missing'); continue
+    x, y = a[n][()], b[n][()]
+    if x.shape != y.shape:
+        bad.append('%s shape %s vs %s' % (n, x.shape, y.shape)); continue
+    if x.dtype.kind == 'f':
+        e = float(np.abs(x - y).max() / max(np.abs(x).max(), 1e-300)) if x.size else 0.0
+        if e > worst:
+            worst, where = e, n
+    elif (x != y).any():
+        bad.append(n + ' differs')
+print('%-40s fields.h5: %d datasets, %d frames, worst relative difference %.3e (%s) %s' % (
+    base.split('/')[-1], len(names), len(a['frames']), worst, where, '; '.join(bad)))
+sys.exit(0 if worst < 1e-9 and not bad and len(a['frames']) == len(b['frames']) >= 2 else 1)
+PY
 done
 exit $status
