@@ -34,6 +34,23 @@ struct ContactFaceData
   RealView density;         ///< ghost faces: density of the element behind [kg/m^3] (19)
 };
 
+/// \brief Allocates the per-face Views of `F` for `n` faces and sets `F.count`; `params` and
+/// `nodes_used` are left to the caller.
+inline void allocateFaces(ContactFaceData &F, size_t n)
+{
+  F.count = Index(n);
+  F.nodes = DeviceView<Index * [kMaxFaceNodes]>("contact_face_nodes", n);
+  F.num_nodes = IndexView("contact_face_num_nodes", n);
+  F.element = IndexView("contact_face_element", n);
+  F.surface = IndexView("contact_face_surface", n);
+  F.mass = RealView("contact_face_mass", n);
+  F.rigid = IndexView("contact_face_rigid", n);
+  F.back = IndexView("contact_face_back", n);
+  F.key = DeviceView<long *>("contact_face_key", n);
+  F.ghost = IndexView("contact_face_ghost", n);
+  F.density = RealView("contact_face_density", n);
+}
+
 /// \brief Host description of a contact face, for messages and outputs.
 struct ContactFaceInfo
 {

@@ -133,17 +133,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
 
   ContactFaceData F;
   const size_t nf = chosen.size();
-  F.count = Index(nf);
-  F.nodes = DeviceView<Index * [kMaxFaceNodes]>("contact_face_nodes", nf);
-  F.num_nodes = IndexView("contact_face_num_nodes", nf);
-  F.element = IndexView("contact_face_element", nf);
-  F.surface = IndexView("contact_face_surface", nf);
-  F.mass = RealView("contact_face_mass", nf);
-  F.rigid = IndexView("contact_face_rigid", nf);
-  F.back = IndexView("contact_face_back", nf);
-  F.key = DeviceView<long *>("contact_face_key", nf);
-  F.ghost = IndexView("contact_face_ghost", nf);
-  F.density = RealView("contact_face_density", nf);
+  allocateFaces(F, nf);
   auto h_key = Kokkos::create_mirror_view(F.key);
   auto h_nodes = Kokkos::create_mirror_view(F.nodes);
   auto h_nn = Kokkos::create_mirror_view(F.num_nodes);

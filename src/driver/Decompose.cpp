@@ -2,6 +2,7 @@
 // on the global mesh, then this rank's piece; the shared-node exchanges of the cycle; the
 // collective error check that keeps the ranks in step when one of them fails.
 #include "driver/Decomposition.hpp"
+#include "core/HostCopy.hpp"
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
@@ -13,20 +14,6 @@
 
 namespace scpdyn
 {
-namespace
-{
-
-IndexView toDevice(const std::vector<Index> &v, const char *label)
-{
-  IndexView d(std::string(label), v.size());
-  auto h = Kokkos::create_mirror_view(d);
-  for (size_t k = 0; k < v.size(); ++k)
-    h(k) = v[k];
-  Kokkos::deep_copy(d, h);
-  return d;
-}
-
-} // namespace
 
 Index Solver::globalNode(Index local) const
 {

@@ -1,6 +1,7 @@
 // Set-up of the solver (steps 1 and 2 of the paper): meshes from the deck, sets, device
 // fields, boundary conditions, gauges and the initial state.
 #include "driver/Solver.hpp"
+#include "core/HostCopy.hpp"
 
 #include "bc/TimeFunctions.hpp"
 #include "driver/Decomposition.hpp"
@@ -402,14 +403,6 @@ void Solver::setupBoundaryConditions()
     }
   }
   Kokkos::deep_copy(_nodes.bc, h_bc);
-  auto toDevice = [](const std::vector<Index> &v, const char *label) {
-    IndexView d(std::string(label), v.size());
-    auto h = Kokkos::create_mirror_view(d);
-    for (size_t k = 0; k < v.size(); ++k)
-      h(k) = v[k];
-    Kokkos::deep_copy(d, h);
-    return d;
-  };
   _bc.force_node = toDevice(force_node, "force_node");
   _bc.force_bc = toDevice(force_bc, "force_bc");
   _bc.pressure_face_nodes = toDevice(pface_nodes, "pressure_face_nodes");

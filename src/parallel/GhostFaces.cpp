@@ -1,6 +1,7 @@
 // Ghost contact faces: selection by global bins (step 4) and the owner -> ghost node copy
 // (step 8). See GhostFaces.hpp.
 #include "parallel/GhostFaces.hpp"
+#include "core/HostCopy.hpp"
 
 #include "parallel/Mpi.hpp"
 
@@ -276,14 +277,6 @@ void GhostFaces::rebuild(const std::vector<GhostFaceDesc> &faces,
     _send_offset.push_back(Index(send_node.size()));
     _recv_offset.push_back(Index(recv_slot.size()));
   }
-  auto toDevice = [](const std::vector<Index> &v, const char *label) {
-    IndexView d(std::string(label), v.size());
-    auto h = Kokkos::create_mirror_view(d);
-    for (size_t k = 0; k < v.size(); ++k)
-      h(k) = v[k];
-    Kokkos::deep_copy(d, h);
-    return d;
-  };
   _send_node = toDevice(send_node, "scpdyn::comm::ghost::send_node");
   _recv_slot = toDevice(recv_slot, "scpdyn::comm::ghost::recv_slot");
   _send_full = std::move(send_node);
@@ -334,14 +327,6 @@ void GhostFaces::restrictTo(const std::vector<char> &needed)
       send_node.push_back(_send_full[size_t(_send_full_offset[j] + q)]);
     _send_offset.push_back(Index(send_node.size()));
   }
-  auto toDevice = [](const std::vector<Index> &v, const char *label) {
-    IndexView d(std::string(label), v.size());
-    auto h = Kokkos::create_mirror_view(d);
-    for (size_t k = 0; k < v.size(); ++k)
-      h(k) = v[k];
-    Kokkos::deep_copy(d, h);
-    return d;
-  };
   _send_node = toDevice(send_node, "scpdyn::comm::ghost::send_node");
   _recv_slot = toDevice(recv_slot, "scpdyn::comm::ghost::recv_slot");
 }

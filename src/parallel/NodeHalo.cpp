@@ -1,5 +1,6 @@
 // Shared-node sum plan (see NodeHalo.hpp).
 #include "parallel/NodeHalo.hpp"
+#include "core/HostCopy.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -10,16 +11,6 @@ namespace scpdyn
 namespace
 {
 
-template <class T>
-DeviceView<T *> toDevice(const char *label, const std::vector<T> &host)
-{
-  DeviceView<T *> v(std::string(label), host.size());
-  auto h = Kokkos::create_mirror_view(v);
-  for (size_t i = 0; i < host.size(); ++i)
-    h(i) = host[i];
-  Kokkos::deep_copy(v, h);
-  return v;
-}
 
 bool finalised()
 {
@@ -96,10 +87,10 @@ NodeHalo::NodeHalo(const LocalDomain &domain, MPI_Comm comm)
   if (!holds_self)
     throw std::runtime_error("NodeHalo: a shared node's rank list misses its own rank");
 
-  _slot_node = toDevice("scpdyn::comm::nodeHalo::slot_node", slot_node);
-  _shared_node = toDevice("scpdyn::comm::nodeHalo::shared_node", sh.local);
-  _sum_offset = toDevice("scpdyn::comm::nodeHalo::sum_offset", sum_offset);
-  _sum_source = toDevice("scpdyn::comm::nodeHalo::sum_source", sum_source);
+  _slot_node = toDevice(slot_node, "scpdyn::comm::nodeHalo::slot_node");
+  _shared_node = toDevice(sh.local, "scpdyn::comm::nodeHalo::shared_node");
+  _sum_offset = toDevice(sum_offset, "scpdyn::comm::nodeHalo::sum_offset");
+  _sum_source = toDevice(sum_source, "scpdyn::comm::nodeHalo::sum_source");
   setupChannel(_vec, 3, 7301, "scpdyn::comm::nodeHalo::vector");
   setupChannel(_scal, 1, 7302, "scpdyn::comm::nodeHalo::scalar");
 }
