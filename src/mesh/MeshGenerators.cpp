@@ -125,13 +125,13 @@ void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type
                      std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
                      std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger)
 {
-  if (type == ElementType::Line2)
-    throw std::runtime_error("brick wall '" + prefix + "': needs quad4, hex8 or tet4 elements");
   if (!(stagger >= 0 && stagger < 1))
     throw std::runtime_error("brick wall '" + prefix + "': stagger must lie in [0, 1), got " +
                              std::to_string(stagger));
-  const bool is3d = dimensionOf(type) == 3;
-  const int courses = is3d ? count[2] : count[1];
+  // 1D: one course, a row of line2 blocks along x (the jointed bar of the paper's Fig. 2)
+  const int dim = dimensionOf(type);
+  const bool is3d = dim == 3;
+  const int courses = is3d ? count[2] : dim == 2 ? count[1] : 1;
   const int rows = is3d ? count[1] : 1; // bricks along y within a 3D course
   if (count[0] < 1 || courses < 1 || rows < 1)
     throw std::runtime_error("brick wall '" + prefix + "': brick counts must be positive");

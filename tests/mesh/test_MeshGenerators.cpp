@@ -190,6 +190,20 @@ TEST(MeshGenerators, BrickWallStackBondAnd3D)
   EXPECT_NEAR(vol, 0.4 * 0.3 * 0.15, kMeasureTol * 0.018);
   EXPECT_NO_THROW(checkElements(h));
 
+  // 1D: one course of line2 blocks (the jointed bar), each its own part, blocks touching
+  HostMesh b;
+  appendBrickWall(b, "b", ElementType::Line2, {{3, 1, 1}}, {{0.5, 0, 0}}, {{0.001, 0, 0}},
+                  {{4, 1, 1}}, 0.5);
+  ASSERT_EQ(b.parts.size(), 4u);
+  EXPECT_EQ(b.dim, 1);
+  EXPECT_EQ(b.numElements(), 12);
+  EXPECT_EQ(b.parts[3].name, "b.0.3");
+  EXPECT_DOUBLE_EQ(b.coords.back()[0], 0.5 + 4 * 0.001); // the last node of the last block
+  Real length = 0;
+  for (int p = 0; p < int(b.parts.size()); ++p)
+    length += meshMeasure(b, p);
+  EXPECT_NEAR(length, 0.004, 1e-15);
+
   HostMesh t;
   appendBrickWall(t, "t", ElementType::Tet4, {{2, 1, 1}}, {{0, 0, 0}}, {{1, 1, 1}},
                   {{2, 1, 2}}, 0.5);
