@@ -11,24 +11,41 @@
 namespace scpdyn
 {
 
+/// \brief Bins per search reach along an axis: finer bins make the searched region (the bins a
+/// face's stencil covers) approach the cube of edge 2 reach; 3 is the cheapest on a jointed grid.
+constexpr int kBinSplit = 3;
+
+/// \brief Faces in a bin are grouped by normal: classes 2k / 2k+1 hold normals within 14 degrees
+/// of +e_k / -e_k, class 6 the rest. Two faces of classes on the same or perpendicular axes are
+/// at most 28 or 118 degrees apart and fail rule 2 (normals at least 120 degrees apart), so a
+/// face of class c only visits classes c^1 and 6 (a face of class 6 visits all).
+constexpr int kNormalClasses = 7;
+
 /// \brief Centroid, outward normal, area and diameter of every contact face at x^{n+1/2}.
 struct FaceGeometryData
 {
   VectorView centroid, normal;
   RealView area, diameter;
+  RealView radius; ///< largest centroid-vertex distance [m] (bounds the projected face)
   IndexView valid;
   Real h_max = 0; ///< largest face diameter [m]
 };
 
-/// \brief Faces sorted into a uniform grid of cubic bins of edge `size` (compressed rows).
+/// \brief Faces sorted into a uniform grid of cubic bins of edge `size` (compressed rows). The
+/// search reach `reach` (the bin_size asked for) spans several bins, so that the stencil of a
+/// face hugs the cube |x_j - x_i| <= reach (per axis) that findCandidatePairs searches.
 struct FaceBins
 {
   Real lo[3] = {0, 0, 0};
   Real size = 1;
+  Real reach = 1;
   int dims[3] = {1, 1, 1};
-  IndexView offsets; ///< bins + 1
-  IndexView faces;   ///< face ids, ascending within a bin
-  IndexView bin_of;  ///< bin of every face
+  IndexView offsets; ///< kNormalClasses x bins + 1 (row of a face: class x bins + bin)
+  IndexView faces;   ///< face ids, ascending within a row
+  IndexView bin_of;  ///< row of every face
+  /// centroid, normal, radius, area of faces(q), in row order: the inner search loop streams
+  /// them instead of gathering four arrays at random face ids
+  DeviceView<Real * [8]> packed;
 };
 
 /// \brief Candidate face pairs (face1 < face2), sorted by (face1, face2).
@@ -85,16 +102,19 @@ KOKKOS_INLINE_FUNCTION CpGeometry pairGeometry(const ContactFaceData &F, Index f
 void computeFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real dt, int dim,
                          bool axisym, FaceGeometryData &G);
 
-/// \brief Step 3: sort the faces into bins of edge `bin_size` by their centroids. The grid is
-/// coarsened when it would have more than 4 bins per face.
+/// \brief Step 3: sort the faces by their centroids into bins of edge bin_size / kBinSplit, for
+/// a search of reach `bin_size` per axis, grouped by normal class (kNormalClasses). The grid is
+/// coarsened when it would have more bins than faces (+64).
 void sortFacesIntoBins(const FaceGeometryData &G, Index num_faces, int dim, Real bin_size,
                        FaceBins &bins);
 
-/// \brief Candidate pairs of 3.2 among faces in the same or neighbouring bins (3^dim stencil):
-/// opposing normals, different elements, no shared node, each face on the right side of the
-/// other (within candidatePenetration(): half the smaller face plus the closure the divergence
-/// check accepts), gap -u0 <= g_search, and overlap
-/// Ac > eps_A min(A1, A2) at the half step.
+/// \brief Candidate pairs of 3.2 among faces whose centroids are within `bins.reach` of each
+/// other along every axis: opposing normals, different elements, no shared node, each face on
+/// the right side of the other (within candidatePenetration(): half the smaller face plus the
+/// closure the divergence check accepts), gap -u0 <= g_search, and overlap
+/// Ac > eps_A min(A1, A2) at the half step. Cheap bounds (lateral distance of the centroids,
+/// gap, projected bounding boxes) reject before the polygon clipping only pairs the clipping
+/// would reject (see ContactSearch.cpp); each pair is clipped once.
 CandidatePairs findCandidatePairs(const ContactFaceData &F, const FaceGeometryData &G,
                                   const FaceBins &bins, const NodeFields &nodes, Real dt, int dim,
                                   bool axisym, Real g_search);
