@@ -5,6 +5,7 @@
 /// for any element shape sum_a B[a][i] x_aj = delta_ij exactly, so a linear velocity field
 /// gives its exact uniform strain rate (the patch test) on distorted meshes too.
 #include "core/Types.hpp"
+#include "element/Lanes.hpp"
 
 namespace scpdyn
 {
@@ -16,7 +17,8 @@ struct ElementTraits
   static constexpr int dim = dimensionOf(T);
 };
 
-KOKKOS_INLINE_FUNCTION void cross3(const Real a[3], const Real b[3], Real c[3])
+template <class R>
+KOKKOS_INLINE_FUNCTION void cross3(const R a[3], const R b[3], R c[3])
 {
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
@@ -99,15 +101,15 @@ KOKKOS_INLINE_FUNCTION int hexFaceNode(int face, int k)
 
 /// \brief One face's share of hex8Gradients(): adds dT/dx to B (unscaled), S.(PxQ) to vol24
 /// and keeps the largest squared face area |PxQ|^2 / 4 in amax2. Force-inlined with literal
-/// node numbers, so no index table is built or read at run time.
-KOKKOS_FORCEINLINE_FUNCTION void hex8FaceTerm(const Real x[8][3], const Real c[3], int ia, int ib,
-                                              int ic, int id, Real B[8][3], Real &vol24,
-                                              Real &amax2)
+/// node numbers, so no index table is built or read at run time. R: Real or a lane pack.
+template <class R>
+KOKKOS_FORCEINLINE_FUNCTION void hex8FaceTerm(const R x[8][3], const R c[3], int ia, int ib, int ic,
+                                              int id, R B[8][3], R &vol24, R &amax2)
 {
-  Real S[3], P[3], Q[3], PxQ[3], QxS[3], SxP[3];
+  R S[3], P[3], Q[3], PxQ[3], QxS[3], SxP[3];
   for (int i = 0; i < 3; ++i)
   {
-    S[i] = x[ia][i] + x[ib][i] + x[ic][i] + x[id][i] - 4 * c[i];
+    S[i] = x[ia][i] + x[ib][i] + x[ic][i] + x[id][i] - Real(4) * c[i];
     P[i] = x[ic][i] - x[ia][i];
     Q[i] = x[id][i] - x[ib][i];
   }
@@ -122,8 +124,8 @@ KOKKOS_FORCEINLINE_FUNCTION void hex8FaceTerm(const Real x[8][3], const Real c[3
     B[ib][i] += PxQ[i] - SxP[i];
     B[id][i] += PxQ[i] + SxP[i];
   }
-  const Real a2 = 0.25 * (PxQ[0] * PxQ[0] + PxQ[1] * PxQ[1] + PxQ[2] * PxQ[2]);
-  amax2 = a2 > amax2 ? a2 : amax2;
+  const R a2 = 0.25 * (PxQ[0] * PxQ[0] + PxQ[1] * PxQ[1] + PxQ[2] * PxQ[2]);
+  amax2 = LaneOps<R>::max(a2, amax2);
 }
 
 /// \brief Hex8: exact trilinear volume and its gradient; also the largest squared face area
@@ -134,17 +136,19 @@ KOKKOS_FORCEINLINE_FUNCTION void hex8FaceTerm(const Real x[8][3], const Real c[3
 /// (derived in docs/theory.md). Differentiating T = S.(PxQ) = P.(QxS) = Q.(SxP):
 /// dT/da = PxQ - QxS, dT/dc = PxQ + QxS, dT/db = PxQ - SxP, dT/dd = PxQ + SxP.
 /// Coordinates are taken relative to the centroid to keep round-off small. The faces are
-/// those of hexFaceNode(), in its order.
-KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3], Real &max_face_area2)
+/// those of hexFaceNode(), in its order. R: Real, or a lane pack of hexes (Lanes.hpp).
+template <class R>
+KOKKOS_INLINE_FUNCTION R hex8Gradients(const R x[8][3], R B[8][3], R &max_face_area2)
 {
-  Real c[3] = {0, 0, 0};
+  const R zero = LaneOps<R>::broadcast(0);
+  R c[3] = {zero, zero, zero};
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
       c[i] += 0.125 * x[a][i];
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
-      B[a][i] = 0;
-  Real vol24 = 0, amax2 = 0;
+      B[a][i] = zero;
+  R vol24 = zero, amax2 = zero;
   hex8FaceTerm(x, c, 0, 3, 2, 1, B, vol24, amax2);
   hex8FaceTerm(x, c, 4, 5, 6, 7, B, vol24, amax2);
   hex8FaceTerm(x, c, 0, 1, 5, 4, B, vol24, amax2);
@@ -152,8 +156,8 @@ KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3], Real
   hex8FaceTerm(x, c, 2, 3, 7, 6, B, vol24, amax2);
   hex8FaceTerm(x, c, 3, 0, 4, 7, B, vol24, amax2);
   max_face_area2 = amax2;
-  const Real V = vol24 / 24;
-  const Real s = 1 / vol24; // (1/24 dT) / V
+  const R V = vol24 / Real(24);
+  const R s = Real(1) / vol24; // (1/24 dT) / V
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
       B[a][i] *= s;
@@ -161,9 +165,10 @@ KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3], Real
 }
 
 /// \brief Hex8: exact trilinear volume and its gradient (see above).
-KOKKOS_INLINE_FUNCTION Real hex8Gradients(const Real x[8][3], Real B[8][3])
+template <class R>
+KOKKOS_INLINE_FUNCTION R hex8Gradients(const R x[8][3], R B[8][3])
 {
-  Real amax2;
+  R amax2;
   return hex8Gradients(x, B, amax2);
 }
 
@@ -244,14 +249,15 @@ KOKKOS_INLINE_FUNCTION Real characteristicLength(const Real x[][3], Real measure
 
 /// \brief elementGradients() and characteristicLength() together: the hex8 reuses its face
 /// normals (same arithmetic, so the same bits as the two calls). Returns the measure.
-template <ElementType T>
-KOKKOS_INLINE_FUNCTION Real elementGradientsAndLength(const Real x[][3], Real B[][3], Real &length)
+/// R: Real, or a lane pack for the hex8 (Lanes.hpp).
+template <ElementType T, class R>
+KOKKOS_INLINE_FUNCTION R elementGradientsAndLength(const R x[][3], R B[][3], R &length)
 {
   if constexpr (T == ElementType::Hex8)
   {
-    Real amax2;
-    const Real V = hex8Gradients(x, B, amax2);
-    length = V / kmath::sqrt(amax2);
+    R amax2;
+    const R V = hex8Gradients(x, B, amax2);
+    length = V / LaneOps<R>::sqrt(amax2);
     return V;
   }
   else

@@ -9,27 +9,44 @@
 namespace scpdyn
 {
 
-/// \brief State of one element carried between steps.
-struct ElementState
+/// \brief State of one element carried between steps (R = Real; a lane pack: W elements).
+template <class R>
+struct ElementStateOf
 {
-  Real stress[6];
-  Real energy;
-  Real plastic_strain;
-  Real volume;
-  Real mass;
-  Real sound_speed;
-  Real q; ///< viscosity pressure of the previous step [Pa]
-  Real history[kHistorySize];
-  Real hourglass[kHourglassSize];
+  R stress[6];
+  R energy;
+  R plastic_strain;
+  R volume;
+  R mass;
+  R sound_speed;
+  R q; ///< viscosity pressure of the previous step [Pa]
+  R history[kHistorySize];
+  R hourglass[kHourglassSize];
 };
+using ElementState = ElementStateOf<Real>;
 
 /// \brief What one element step produces besides the new state.
-struct ElementResult
+template <class R>
+struct ElementResultOf
 {
-  Real force[kMaxElementNodes][3]; ///< nodal forces [N]
-  Real q;                          ///< viscosity pressure [Pa]
-  Real hourglass_power;            ///< [W]
-  Real stable_dt;                  ///< h / c; <= 0 if inverted
+  R force[kMaxElementNodes][3]; ///< nodal forces [N]
+  R q;                          ///< viscosity pressure [Pa]
+  R hourglass_power;            ///< [W]
+  R stable_dt;                  ///< h / c; <= 0 if inverted
+};
+using ElementResult = ElementResultOf<Real>;
+
+/// \brief What the element step carries from its kinematics to the material update and the
+/// forces (elementStep() is these three phases; the hex8 lanes call them on packs).
+template <ElementType T, class R>
+struct ElementKinematicsOf
+{
+  R B[ElementTraits<T>::nodes][3];
+  R measure, V, length;
+  R D[6];          ///< rate of deformation on the midpoint configuration [1/s]
+  R rho_old, rho_new;
+  R q_new;         ///< this step's viscosity pressure [Pa]
+  R q_mean;        ///< 1/2 (q^{n-1/2} + q^{n+1/2}), for the material's heating [Pa]
 };
 
 /// \brief Velocity gradient on the midpoint configuration x^n from the one on x^{n+1/2}.
@@ -39,24 +56,28 @@ struct ElementResult
 /// (Hughes-Winget midpoint rule). With
 /// x^{n+1/2} = (I + dt/2 L) x^n locally, L = Lh (I - dt/2 Lh)^{-1}: exact for rigid rotation
 /// (D = 0, so no spurious stress) and for every linear velocity field.
-template <int D>
-KOKKOS_INLINE_FUNCTION void midpointVelocityGradient(const Real Lh[3][3], Real half_dt, Real L[3][3])
+template <int D, class R>
+KOKKOS_INLINE_FUNCTION void midpointVelocityGradient(const R Lh[3][3], Real half_dt, R L[3][3])
 {
+  const R zero = LaneOps<R>::broadcast(0);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      L[i][j] = 0;
+      L[i][j] = zero;
   if constexpr (D == 1)
-    L[0][0] = Lh[0][0] / (1 - half_dt * Lh[0][0]);
+    L[0][0] = Lh[0][0] / (Real(1) - half_dt * Lh[0][0]);
   else
   {
-    Real M[3][3], Mi[3][3];
+    R M[3][3], Mi[3][3];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
-        M[i][j] = (i == j ? 1 : 0) - (i < D && j < D ? half_dt * Lh[i][j] : 0);
-    const Real det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
-                     M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-                     M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
-    const Real id = 1 / det;
+      {
+        const Real id = i == j ? 1 : 0;
+        M[i][j] = i < D && j < D ? id - half_dt * Lh[i][j] : LaneOps<R>::broadcast(id - 0.0);
+      }
+    const R det = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                  M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                  M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+    const R id = Real(1) / det;
     Mi[0][0] = (M[1][1] * M[2][2] - M[1][2] * M[2][1]) * id;
     Mi[0][1] = (M[0][2] * M[2][1] - M[0][1] * M[2][2]) * id;
     Mi[0][2] = (M[0][1] * M[1][2] - M[0][2] * M[1][1]) * id;
@@ -73,41 +94,88 @@ KOKKOS_INLINE_FUNCTION void midpointVelocityGradient(const Real Lh[3][3], Real h
   }
 }
 
-/// \brief One element step. x: half-step positions x^{n+1/2}; v: velocities v^n.
-/// The strain increment dt D(v^n) at x^{n+1/2} takes the element from n-1/2 to n+1/2.
-template <ElementType T, bool Axi>
-KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
-                                        const MaterialParams &mat, const ElementControls &ctl,
-                                        ElementState &s, ElementResult &r)
+/// \brief hughesWingetRotation() and rotateSymmetric() of material/TensorOps.hpp for R (the
+/// same arithmetic in the same order, so Real gives their bits): rotates the stress by the
+/// spin w over dt, and the stiffness hourglass resistances with it if `hourglass`.
+template <int modes, class R>
+KOKKOS_INLINE_FUNCTION void rotateElementState(const R w[3], Real dt, bool hourglass, R stress[6],
+                                               R Q[kHourglassSize])
+{
+  const R a0 = 0.5 * dt * w[0], a1 = 0.5 * dt * w[1], a2 = 0.5 * dt * w[2];
+  const R zero = LaneOps<R>::broadcast(0);
+  const R A[3][3] = {{zero, -a2, a1}, {a2, zero, -a0}, {-a1, a0, zero}};
+  const R scale = Real(2) / (Real(1) + a0 * a0 + a1 * a1 + a2 * a2);
+  R R_[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+    {
+      const R A2 = A[i][0] * A[0][j] + A[i][1] * A[1][j] + A[i][2] * A[2][j];
+      R_[i][j] = Real(i == j ? 1 : 0) + scale * (A[i][j] + A2);
+    }
+  const R S[3][3] = {{stress[0], stress[3], stress[5]},
+                     {stress[3], stress[1], stress[4]},
+                     {stress[5], stress[4], stress[2]}};
+  R RS[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      RS[i][j] = R_[i][0] * S[0][j] + R_[i][1] * S[1][j] + R_[i][2] * S[2][j];
+  R out[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j)
+      out[i][j] = RS[i][0] * R_[j][0] + RS[i][1] * R_[j][1] + RS[i][2] * R_[j][2];
+  stress[0] = out[0][0];
+  stress[1] = out[1][1];
+  stress[2] = out[2][2];
+  stress[3] = out[0][1];
+  stress[4] = out[1][2];
+  stress[5] = out[0][2];
+  if (hourglass)
+    for (int k = 0; k < modes; ++k)
+    {
+      const R q3[3] = {Q[3 * k], Q[3 * k + 1], Q[3 * k + 2]};
+      for (int i = 0; i < 3; ++i)
+        Q[3 * k + i] = R_[i][0] * q3[0] + R_[i][1] * q3[1] + R_[i][2] * q3[2];
+    }
+}
+
+/// \brief Phase 1a of elementStep(): gradients, measure, volume and length. The step goes on
+/// only if k.V > 0 and k.measure > 0 (an inverted element stops the run).
+template <ElementType T, bool Axi, class R>
+KOKKOS_INLINE_FUNCTION void elementGeometry(const R x[][3], ElementKinematicsOf<T, R> &k)
+{
+  k.measure = elementGradientsAndLength<T>(x, k.B, k.length);
+  k.V = k.measure;
+  if constexpr (Axi)
+    k.V = quad4RadialVolume(x);
+}
+
+/// \brief Phase 1b: velocity gradient on the midpoint configuration, rate of deformation,
+/// densities, viscosity pressure, and the rotation of the stress (and stiffness hourglass
+/// resistances) by the step's spin.
+template <ElementType T, bool Axi, class R>
+KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &ctl,
+                                         ElementStateOf<R> &s, ElementKinematicsOf<T, R> &k)
 {
   constexpr int N = ElementTraits<T>::nodes;
   constexpr int D = ElementTraits<T>::dim;
-  Real B[N][3];
-  Real length;
-  const Real measure = elementGradientsAndLength<T>(x, B, length);
-  Real V = measure;
-  if constexpr (Axi)
-    V = quad4RadialVolume(x);
-  if (!(V > 0) || !(measure > 0))
-  {
-    r.stable_dt = -1;
-    return;
-  }
-
-  Real Lh[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+  using Ops = LaneOps<R>;
+  const R zero = Ops::broadcast(0);
+  R Lh[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      Lh[i][j] = zero;
   for (int a = 0; a < N; ++a)
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j)
-        Lh[i][j] += v[a][i] * B[a][j];
-  Real L[3][3];
+        Lh[i][j] += v[a][i] * k.B[a][j];
+  R L[3][3];
   midpointVelocityGradient<D>(Lh, 0.5 * ctl.dt, L);
-  MaterialStep st;
-  st.D[0] = L[0][0];
-  st.D[1] = L[1][1];
-  st.D[2] = L[2][2];
-  st.D[3] = 0.5 * (L[0][1] + L[1][0]);
-  st.D[4] = 0.5 * (L[1][2] + L[2][1]);
-  st.D[5] = 0.5 * (L[0][2] + L[2][0]);
+  k.D[0] = L[0][0];
+  k.D[1] = L[1][1];
+  k.D[2] = L[2][2];
+  k.D[3] = 0.5 * (L[0][1] + L[1][0]);
+  k.D[4] = 0.5 * (L[1][2] + L[2][1]);
+  k.D[5] = 0.5 * (L[0][2] + L[2][0]);
   if constexpr (Axi)
   {
     // hoop rate v_r / r with r = V / A the area-centroid radius (work-conjugate to the
@@ -115,70 +183,118 @@ KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
     Real vr = 0;
     for (int a = 0; a < N; ++a)
       vr += v[a][0];
-    st.D[2] = vr / N * measure / V;
+    k.D[2] = vr / N * k.measure / k.V;
   }
-  st.dt = ctl.dt;
-  st.rho_old = s.mass / s.volume;
-  st.rho_new = s.mass / V;
-  st.time = ctl.half_time;
-  st.length = length;
+  k.rho_old = s.mass / s.volume;
+  k.rho_new = s.mass / k.V;
 
-  const Real trD = st.D[0] + st.D[1] + st.D[2];
-  Real q_new = 0;
-  if (trD < 0) // the viscosity length (a cbrt call in 3D) is needed in compression only
+  const R trD = k.D[0] + k.D[1] + k.D[2];
+  // the viscosity length (a cbrt call in 3D) is needed in compression only
+  if constexpr (Ops::width == 1)
   {
-    const Real lq = D == 1 ? measure : D == 2 ? kmath::sqrt(measure) : kmath::cbrt(measure);
-    const Real c_old = s.sound_speed;
-    q_new = st.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * c_old * trD);
+    k.q_new = zero;
+    if (trD < 0)
+    {
+      const R lq = D == 1 ? k.measure : D == 2 ? Ops::sqrt(k.measure) : Ops::cbrt(k.measure);
+      k.q_new = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
+    }
+  }
+  else // lanes (hex8): cbrt per compressed lane, the same expression, 0 elsewhere
+  {
+    R lq = zero;
+    for (int l = 0; l < Ops::width; ++l)
+      if (trD[l] < 0)
+        lq[l] = kmath::cbrt(k.measure[l]);
+    const R q = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
+    k.q_new = trD < 0 ? q : zero;
   }
   // the viscous heating is booked with the step's mean q, as the kinetic energy sees the mean
   // of the forces at n-1/2 and n+1/2 (leapfrog energy balance, see NodeUpdate.cpp)
-  st.q = 0.5 * (s.q + q_new);
+  k.q_mean = 0.5 * (s.q + k.q_new);
 
   if constexpr (D > 1)
   {
-    const Real w[3] = {0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
-                       0.5 * (L[1][0] - L[0][1])};
-    Real R[3][3];
-    hughesWingetRotation(w, ctl.dt, R);
-    rotateSymmetric(R, s.stress);
-    if (ctl.hourglass == HourglassType::Stiffness)
-      for (int k = 0; k < HourglassModes<T>::count; ++k)
-      {
-        Real q3[3] = {s.hourglass[3 * k], s.hourglass[3 * k + 1], s.hourglass[3 * k + 2]};
-        for (int i = 0; i < 3; ++i)
-          s.hourglass[3 * k + i] = R[i][0] * q3[0] + R[i][1] * q3[1] + R[i][2] * q3[2];
-      }
+    const R w[3] = {0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
+                    0.5 * (L[1][0] - L[0][1])};
+    rotateElementState<HourglassModes<T>::count>(w, ctl.dt, ctl.hourglass == HourglassType::Stiffness,
+                                                 s.stress, s.hourglass);
   }
+}
 
-  const Real c = updateMaterial(mat, st, s.stress, s.energy, s.plastic_strain, s.history);
+/// \brief The material's MaterialStep from phase 1 (one element).
+template <ElementType T>
+KOKKOS_INLINE_FUNCTION MaterialStep materialStep(const ElementKinematicsOf<T, Real> &k,
+                                                 const ElementControls &ctl)
+{
+  MaterialStep st;
+  for (int i = 0; i < 6; ++i)
+    st.D[i] = k.D[i];
+  st.dt = ctl.dt;
+  st.rho_old = k.rho_old;
+  st.rho_new = k.rho_new;
+  st.q = k.q_mean;
+  st.time = ctl.half_time;
+  st.length = k.length;
+  return st;
+}
+
+/// \brief Phase 3, after the material update gave the sound speed c: stress-divergence and
+/// hourglass forces, the new state's volume, q and c, and the stable time step.
+template <ElementType T, bool Axi, class R>
+KOKKOS_INLINE_FUNCTION void elementForces(const R x[][3], const R v[][3], const ElementControls &ctl,
+                                          const ElementKinematicsOf<T, R> &k, const R &c,
+                                          ElementStateOf<R> &s, ElementResultOf<R> &r)
+{
+  constexpr int N = ElementTraits<T>::nodes;
+  constexpr int D = ElementTraits<T>::dim;
   s.sound_speed = c;
-  s.volume = V;
-
-  const Real sig[3][3] = {{s.stress[0] - q_new, s.stress[3], s.stress[5]},
-                          {s.stress[3], s.stress[1] - q_new, s.stress[4]},
-                          {s.stress[5], s.stress[4], s.stress[2] - q_new}};
+  s.volume = k.V;
+  const R q_new = k.q_new;
+  const R sig[3][3] = {{s.stress[0] - q_new, s.stress[3], s.stress[5]},
+                       {s.stress[3], s.stress[1] - q_new, s.stress[4]},
+                       {s.stress[5], s.stress[4], s.stress[2] - q_new}};
+  const R zero = LaneOps<R>::broadcast(0);
   for (int a = 0; a < N; ++a)
   {
     for (int i = 0; i < 3; ++i)
     {
-      Real fi = 0;
+      R fi = zero;
       for (int j = 0; j < D; ++j)
-        fi -= sig[i][j] * B[a][j];
-      r.force[a][i] = i < D ? V * fi : 0;
+        fi -= sig[i][j] * k.B[a][j];
+      r.force[a][i] = i < D ? k.V * fi : zero;
     }
     if constexpr (Axi)
-      r.force[a][0] -= sig[2][2] * measure / N;
+      r.force[a][0] -= sig[2][2] * k.measure / N;
   }
-  r.hourglass_power = hourglassForces<T>(x, v, B, V, st.rho_new, c, ctl.hourglass,
-                                         ctl.hourglass_coefficient, ctl.dt, s.hourglass, r.force);
+  r.hourglass_power = hourglassForces<T, R>(x, v, k.B, k.V, k.rho_new, c, ctl.hourglass,
+                                            ctl.hourglass_coefficient, ctl.dt, s.hourglass, r.force);
   r.q = q_new;
   s.q = q_new;
   // dt = h / c. The viscosity term of h / (Q + sqrt(Q^2 + c^2)) is left out on purpose: it
   // switches on and off as elements load and unload, and a dt that jumps by several percent
   // every few cycles breaks the leapfrog's energy conservation (measured: 0.7 % drift on a
   // vibrating bar with the default linear q). S <= 0.9 leaves the margin the damping needs.
-  r.stable_dt = st.length / c;
+  r.stable_dt = k.length / c;
+}
+
+/// \brief One element step. x: half-step positions x^{n+1/2}; v: velocities v^n.
+/// The strain increment dt D(v^n) at x^{n+1/2} takes the element from n-1/2 to n+1/2.
+template <ElementType T, bool Axi>
+KOKKOS_INLINE_FUNCTION void elementStep(const Real x[][3], const Real v[][3],
+                                        const MaterialParams &mat, const ElementControls &ctl,
+                                        ElementState &s, ElementResult &r)
+{
+  ElementKinematicsOf<T, Real> k;
+  elementGeometry<T, Axi>(x, k);
+  if (!(k.V > 0) || !(k.measure > 0))
+  {
+    r.stable_dt = -1;
+    return;
+  }
+  elementRates<T, Axi>(v, ctl, s, k);
+  const MaterialStep st = materialStep<T>(k, ctl);
+  const Real c = updateMaterial(mat, st, s.stress, s.energy, s.plastic_strain, s.history);
+  elementForces<T, Axi>(x, v, ctl, k, c, s, r);
 }
 
 } // namespace scpdyn

@@ -52,33 +52,43 @@ KOKKOS_INLINE_FUNCTION Real hourglassBase(int k, int a)
 /// innermost loops run over the modes k, which the compiler turns into vector instructions,
 /// and each value is computed once (a mode loop rebuilt the base-vector table on the stack
 /// for every lookup: 2.4x the instructions). Q, f and the return value as in hourglassForces().
-KOKKOS_INLINE_FUNCTION Real hex8HourglassForces(const Real x[8][3], const Real v[8][3],
-                                                const Real B[8][3], Real V, Real rho, Real c,
-                                                HourglassType type, Real kappa, Real dt,
-                                                Real Q[kHourglassSize], Real f[8][3])
+/// R: Real, or a lane pack of hexes (Lanes.hpp; then the modes are not vectorised, the
+/// elements are).
+template <class R>
+KOKKOS_INLINE_FUNCTION R hex8HourglassForces(const R x[8][3], const R v[8][3], const R B[8][3],
+                                             LaneArg<R> V, LaneArg<R> rho, LaneArg<R> c,
+                                             HourglassType type, Real kappa, Real dt,
+                                             R Q[kHourglassSize], R f[8][3])
 {
   // G[a][k] = Gamma_k at node a (hourglassBase<Hex8>(k, a))
   constexpr Real G[8][4] = {{1, 1, 1, -1}, {1, -1, -1, 1}, {-1, -1, 1, -1}, {-1, 1, -1, 1},
                             {-1, -1, 1, 1},  {-1, 1, -1, -1}, {1, 1, 1, 1},   {1, -1, -1, -1}};
-  Real gx[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+  const R zero = LaneOps<R>::broadcast(0);
+  R gx[3][4];
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 4; ++k)
+      gx[i][k] = zero;
   for (int b = 0; b < 8; ++b)
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 4; ++k)
         gx[i][k] += G[b][k] * x[b][i];
-  Real gamma[8][4];
+  R gamma[8][4];
   for (int a = 0; a < 8; ++a)
     for (int k = 0; k < 4; ++k)
       gamma[a][k] = G[a][k] - gx[0][k] * B[a][0] - gx[1][k] * B[a][1] - gx[2][k] * B[a][2];
-  Real qdot[3][4] = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+  R qdot[3][4];
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 4; ++k)
+      qdot[i][k] = zero;
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 4; ++k)
         qdot[i][k] += gamma[a][k] * v[a][i];
-  Real Qn[3][4];
-  Real power = 0;
+  R Qn[3][4];
+  R power = zero;
   if (type == HourglassType::Viscous)
   {
-    const Real visc = 0.25 * kappa * rho * c * kmath::cbrt(V * V);
+    const R visc = 0.25 * kappa * rho * c * LaneOps<R>::cbrt(V * V);
     for (int k = 0; k < 4; ++k)
       for (int i = 0; i < 3; ++i)
       {
@@ -89,11 +99,11 @@ KOKKOS_INLINE_FUNCTION Real hex8HourglassForces(const Real x[8][3], const Real v
   }
   else
   {
-    Real BB = 0;
+    R BB = zero;
     for (int a = 0; a < 8; ++a)
       for (int i = 0; i < 3; ++i)
         BB += B[a][i] * B[a][i];
-    const Real stiff = kappa * rho * c * c * V * BB / 8 * dt;
+    const R stiff = kappa * rho * c * c * V * BB / Real(8) * dt;
     for (int k = 0; k < 4; ++k)
       for (int i = 0; i < 3; ++i)
       {
@@ -105,7 +115,7 @@ KOKKOS_INLINE_FUNCTION Real hex8HourglassForces(const Real x[8][3], const Real v
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
     {
-      Real fa = f[a][i];
+      R fa = f[a][i];
       for (int k = 0; k < 4; ++k)
         fa -= gamma[a][k] * Qn[i][k];
       f[a][i] = fa;
@@ -117,18 +127,19 @@ KOKKOS_INLINE_FUNCTION Real hex8HourglassForces(const Real x[8][3], const Real v
 /// previous step (count x 3; accumulated in the stiffness form), updated in place. Returns the
 /// hourglass power with the step's mean resistance 1/2 (Q_old + Q_new) . qdot [W], as the
 /// leapfrog's kinetic energy sees the mean of the forces at n-1/2 and n+1/2.
-template <ElementType T>
-KOKKOS_INLINE_FUNCTION Real hourglassForces(const Real x[][3], const Real v[][3], const Real B[][3],
-                                            Real V, Real rho, Real c, HourglassType type,
-                                            Real kappa, Real dt, Real Q[kHourglassSize],
-                                            Real f[][3])
+/// R: Real, or a lane pack for the hex8 (Lanes.hpp).
+template <ElementType T, class R>
+KOKKOS_INLINE_FUNCTION R hourglassForces(const R x[][3], const R v[][3], const R B[][3],
+                                         LaneArg<R> V, LaneArg<R> rho, LaneArg<R> c,
+                                         HourglassType type, Real kappa, Real dt,
+                                         R Q[kHourglassSize], R f[][3])
 {
   constexpr int N = ElementTraits<T>::nodes;
   constexpr int M = HourglassModes<T>::count;
   constexpr int D = ElementTraits<T>::dim;
   if constexpr (T == ElementType::Hex8)
-    return hex8HourglassForces(x, v, B, V, rho, c, type, kappa, dt, Q, f);
-  Real power = 0;
+    return hex8HourglassForces<R>(x, v, B, V, rho, c, type, kappa, dt, Q, f);
+  R power = LaneOps<R>::broadcast(0);
   if constexpr (M > 0 && T != ElementType::Hex8) // the quad's single mode
   {
     Real BB = 0;
