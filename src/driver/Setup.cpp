@@ -19,6 +19,17 @@
 
 namespace scpdyn
 {
+
+namespace
+{
+/// `scatter: gather` with one thread: plain adds in element order give the corner gather's sums
+/// bit for bit (every node's corners are gathered in ascending element order from zero), so
+/// the corner array and the gather pass are skipped.
+bool cornerGather(const Deck &deck)
+{
+  return deck.scatter == "gather" && ExecSpace().concurrency() > 1;
+}
+} // namespace
 namespace
 {
 
@@ -280,7 +291,7 @@ void Solver::setupFields()
     h_materials(i) = _materials_host[i];
   Kokkos::deep_copy(_materials, h_materials);
 
-  if (_deck.scatter == "gather")
+  if (cornerGather(_deck))
   {
     _corners.offsets = IndexView("corner_offsets", size_t(num_nodes) + 1);
     auto h_off = Kokkos::create_mirror_view(_corners.offsets);
@@ -521,7 +532,7 @@ void Solver::setupInitialState()
   _controls.hourglass_coefficient = _deck.hourglass_coefficient;
   _controls.q_linear = _deck.bulk_viscosity_linear;
   _controls.q_quadratic = _deck.bulk_viscosity_quadratic;
-  _controls.gather = _deck.scatter == "gather";
+  _controls.gather = cornerGather(_deck);
 
   Real dt_elem = initialElementTimeStep(_groups, _deck.geometry, _nodes, _elems, _materials);
   if (_dd)

@@ -153,7 +153,7 @@ struct Deck
   std::string hourglass_type = "viscous"; ///< viscous | stiffness
   Real bulk_viscosity_linear = 0.06;
   Real bulk_viscosity_quadratic = 1.5;
-  std::string scatter = "atomic";         ///< atomic | gather
+  std::string scatter = "gather";         ///< gather (deterministic) | atomic
   std::array<Real, 3> gravity{{0, 0, 0}};
 
   // output

@@ -306,7 +306,7 @@ TEST(DeckParser, MinimalDeckGetsDocumentedDefaults)
   EXPECT_EQ(d.hourglass_coefficient, 0.05);
   EXPECT_EQ(d.bulk_viscosity_linear, 0.06);
   EXPECT_EQ(d.bulk_viscosity_quadratic, 1.5);
-  EXPECT_EQ(d.scatter, "atomic");
+  EXPECT_EQ(d.scatter, "gather");
   EXPECT_EQ(d.gravity, (std::array<Real, 3>{{0, 0, 0}}));
   EXPECT_EQ(d.output_dir, "out/impact_2d");
   EXPECT_EQ(d.field_interval, 0.0);
