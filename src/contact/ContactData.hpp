@@ -51,6 +51,39 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
   F.density = RealView("contact_face_density", n);
 }
 
+/// \brief Host mirrors of the per-face Views filled at set-up (density excepted: ghost
+/// densities arrive later), and their copy to the device.
+struct ContactFaceHost
+{
+  DeviceView<Index * [kMaxFaceNodes]>::HostMirror nodes;
+  IndexView::HostMirror num_nodes, element, surface, rigid, back, ghost;
+  RealView::HostMirror mass;
+  DeviceView<long *>::HostMirror key;
+
+  explicit ContactFaceHost(const ContactFaceData &F)
+      : nodes(Kokkos::create_mirror_view(F.nodes)),
+        num_nodes(Kokkos::create_mirror_view(F.num_nodes)),
+        element(Kokkos::create_mirror_view(F.element)),
+        surface(Kokkos::create_mirror_view(F.surface)),
+        rigid(Kokkos::create_mirror_view(F.rigid)), back(Kokkos::create_mirror_view(F.back)),
+        ghost(Kokkos::create_mirror_view(F.ghost)), mass(Kokkos::create_mirror_view(F.mass)),
+        key(Kokkos::create_mirror_view(F.key))
+  {
+  }
+  void copyTo(const ContactFaceData &F) const
+  {
+    Kokkos::deep_copy(F.nodes, nodes);
+    Kokkos::deep_copy(F.num_nodes, num_nodes);
+    Kokkos::deep_copy(F.element, element);
+    Kokkos::deep_copy(F.surface, surface);
+    Kokkos::deep_copy(F.rigid, rigid);
+    Kokkos::deep_copy(F.back, back);
+    Kokkos::deep_copy(F.ghost, ghost);
+    Kokkos::deep_copy(F.mass, mass);
+    Kokkos::deep_copy(F.key, key);
+  }
+};
+
 /// \brief Host description of a contact face, for messages and outputs.
 struct ContactFaceInfo
 {

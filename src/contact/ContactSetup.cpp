@@ -134,14 +134,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   ContactFaceData F;
   const size_t nf = chosen.size();
   allocateFaces(F, nf);
-  auto h_key = Kokkos::create_mirror_view(F.key);
-  auto h_nodes = Kokkos::create_mirror_view(F.nodes);
-  auto h_nn = Kokkos::create_mirror_view(F.num_nodes);
-  auto h_el = Kokkos::create_mirror_view(F.element);
-  auto h_surf = Kokkos::create_mirror_view(F.surface);
-  auto h_mass = Kokkos::create_mirror_view(F.mass);
-  auto h_rigid = Kokkos::create_mirror_view(F.rigid);
-  auto h_back = Kokkos::create_mirror_view(F.back);
+  ContactFaceHost hf(F);
   auto h_emass = Kokkos::create_mirror_view_and_copy(HostSpace(), in.elems.mass);
   auto h_bc = Kokkos::create_mirror_view_and_copy(HostSpace(), in.nodes.bc);
   const int dim = deck.dimension;
@@ -155,15 +148,15 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
     const HostFace &f = external[chosen[i]];
     const Index d = (*in.host_to_device_element)[size_t(f.element)];
     const ElementType type = mesh.parts[size_t(f.part)].type;
-    h_nn(i) = f.num_nodes;
-    h_el(i) = d;
-    h_surf(i) = surface_of[chosen[i]];
+    hf.num_nodes(i) = f.num_nodes;
+    hf.element(i) = d;
+    hf.surface(i) = surface_of[chosen[i]];
     // (10.1): the element's mass per node times the face's nodes
-    h_mass(i) = h_emass(d) * Real(f.num_nodes) / Real(nodesPerElement(type));
+    hf.mass(i) = h_emass(d) * Real(f.num_nodes) / Real(nodesPerElement(type));
     int prescribed = 0;
     for (int a = 0; a < kMaxFaceNodes; ++a)
     {
-      h_nodes(i, a) = a < f.num_nodes ? f.nodes[size_t(a)] : -1;
+      hf.nodes(i, a) = a < f.num_nodes ? f.nodes[size_t(a)] : -1;
       if (a < f.num_nodes)
       {
         used.push_back(f.nodes[size_t(a)]);
@@ -171,15 +164,15 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
           prescribed += h_bc(f.nodes[size_t(a)], c) >= 0 ? 1 : 0;
       }
     }
-    h_rigid(i) = prescribed == f.num_nodes * dim ? 1 : 0;
-    h_back(i) = -1;
+    hf.rigid(i) = prescribed == f.num_nodes * dim ? 1 : 0;
+    hf.back(i) = -1;
     if (type == ElementType::Line2)
     { // 1D point face: the element's other node orients it
       const HostPart &part = mesh.parts[size_t(f.part)];
       const Index e = f.element - first_element[size_t(f.part)];
-      h_back(i) = part.connectivity[size_t(2 * e + (1 - f.local_face))];
+      hf.back(i) = part.connectivity[size_t(2 * e + (1 - f.local_face))];
     }
-    h_key(i) = keyOf(chosen[i]);
+    hf.key(i) = keyOf(chosen[i]);
     info[i] = {keyOf(chosen[i]), globalElement(f.element), f.local_face, f.part};
   }
   std::sort(used.begin(), used.end());
@@ -194,14 +187,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   for (size_t s = 0; s < deck.contact.surfaces.size(); ++s)
     h_params(s) = jointParamsOf(deck.contact.surfaces[s], int(s));
 
-  Kokkos::deep_copy(F.nodes, h_nodes);
-  Kokkos::deep_copy(F.num_nodes, h_nn);
-  Kokkos::deep_copy(F.element, h_el);
-  Kokkos::deep_copy(F.surface, h_surf);
-  Kokkos::deep_copy(F.mass, h_mass);
-  Kokkos::deep_copy(F.rigid, h_rigid);
-  Kokkos::deep_copy(F.back, h_back);
-  Kokkos::deep_copy(F.key, h_key);
+  hf.copyTo(F);
   Kokkos::deep_copy(F.nodes_used, h_used);
   Kokkos::deep_copy(F.params, h_params);
   return F;

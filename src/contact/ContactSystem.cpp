@@ -226,15 +226,7 @@ void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Inde
   ContactFaceData F;
   allocateFaces(F, n);
   F.params = _own.params;
-  auto h_nodes = Kokkos::create_mirror_view(F.nodes);
-  auto h_nn = Kokkos::create_mirror_view(F.num_nodes);
-  auto h_el = Kokkos::create_mirror_view(F.element);
-  auto h_surf = Kokkos::create_mirror_view(F.surface);
-  auto h_mass = Kokkos::create_mirror_view(F.mass);
-  auto h_rigid = Kokkos::create_mirror_view(F.rigid);
-  auto h_back = Kokkos::create_mirror_view(F.back);
-  auto h_key = Kokkos::create_mirror_view(F.key);
-  auto h_ghost = Kokkos::create_mirror_view(F.ghost);
+  ContactFaceHost hf(F);
   _info.assign(n, ContactFaceInfo());
   _ghost_of_face.assign(n, -1);
   std::vector<Index> used = shared_nodes;
@@ -243,27 +235,27 @@ void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Inde
   {
     const bool take_own = j == ghosts.size() || (i < own.size() && own[i].key < ghosts[j].key);
     const GhostFaceDesc &g = take_own ? own[i] : ghosts[j];
-    h_nn(f) = g.num_nodes;
-    h_surf(f) = g.surface;
-    h_mass(f) = g.mass;
-    h_rigid(f) = g.rigid;
-    h_back(f) = g.back;
-    h_key(f) = g.key;
-    h_ghost(f) = take_own ? 0 : 1;
+    hf.num_nodes(f) = g.num_nodes;
+    hf.surface(f) = g.surface;
+    hf.mass(f) = g.mass;
+    hf.rigid(f) = g.rigid;
+    hf.back(f) = g.back;
+    hf.key(f) = g.key;
+    hf.ghost(f) = take_own ? 0 : 1;
     for (int a = 0; a < kMaxFaceNodes; ++a)
     {
-      h_nodes(f, a) = a < g.num_nodes ? g.nodes[a] : -1;
+      hf.nodes(f, a) = a < g.num_nodes ? g.nodes[a] : -1;
       if (a < g.num_nodes)
         used.push_back(g.nodes[a]);
     }
     if (take_own)
     {
-      h_el(f) = own_element(Index(i));
+      hf.element(f) = own_element(Index(i));
       _info[f] = _own_info[i++];
     }
     else
     {
-      h_el(f) = Index(-2 - g.key / 8);
+      hf.element(f) = Index(-2 - g.key / 8);
       _info[f] = {g.key, Index(g.key / 8), int(g.key % 8), g.part};
       _ghost_of_face[f] = Index(j++);
     }
@@ -274,15 +266,7 @@ void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Inde
   auto h_used = Kokkos::create_mirror_view(F.nodes_used);
   for (size_t k = 0; k < used.size(); ++k)
     h_used(k) = used[k];
-  Kokkos::deep_copy(F.nodes, h_nodes);
-  Kokkos::deep_copy(F.num_nodes, h_nn);
-  Kokkos::deep_copy(F.element, h_el);
-  Kokkos::deep_copy(F.surface, h_surf);
-  Kokkos::deep_copy(F.mass, h_mass);
-  Kokkos::deep_copy(F.rigid, h_rigid);
-  Kokkos::deep_copy(F.back, h_back);
-  Kokkos::deep_copy(F.key, h_key);
-  Kokkos::deep_copy(F.ghost, h_ghost);
+  hf.copyTo(F);
   Kokkos::deep_copy(F.nodes_used, h_used);
   _faces = F;
   resizeNodeArrays(size_t(node_count));
