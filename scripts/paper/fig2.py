@@ -132,10 +132,7 @@ def main():
     fig.suptitle("Fig. 2: 1D jointed wave, 10 mm at 1 km/s onto 90 mm limestone, "
                  "gauge at 80 mm (S = 0.5)", fontsize=11)
     fig.tight_layout()
-    os.makedirs(pu.OUT, exist_ok=True)
-    png = os.path.join(pu.OUT, "fig2.png")
-    fig.savefig(png, dpi=120)
-    print("wrote", os.path.relpath(png, pu.ROOT))
+    pu.save_figure(fig, "fig2")
 
     print("\n| case | ref. arrival (us) | arrival (us) | ref. peak (m/s) | peak (m/s) | "
           "ref. steps | cycles | wall (s) | status |")

@@ -70,10 +70,7 @@ def main():
     fig.suptitle("Fig. 5: two 1.5 cm limestone blocks (15x15 / 16x16), 1 km/s, a = 0.2 mm, "
                  "E0 = 0.5 GPa; explicit with the limit (19) off", fontsize=11)
     fig.tight_layout()
-    os.makedirs(pu.OUT, exist_ok=True)
-    png = os.path.join(pu.OUT, "fig5.png")
-    fig.savefig(png, dpi=120)
-    print("wrote", os.path.relpath(png, pu.ROOT))
+    pu.save_figure(fig, "fig5")
 
     ref = R[("implicit", "0.5")]["g"]
     refs = [(ref["time"], ref[k]) for k in GAUGES]

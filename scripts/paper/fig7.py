@@ -79,10 +79,7 @@ def scene(force, tag, title, substitution):
     fig.suptitle(f"Fig. 7: sliding impact, {title}, 1 cm blocks of 17x17, a = 0.005 mm, "
                  "phi0 = 31, phi1 = 0, psi0 = 5 deg, sigma_cr = 1 GPa", fontsize=11)
     fig.tight_layout()
-    os.makedirs(pu.OUT, exist_ok=True)
-    png = os.path.join(pu.OUT, tag + ".png")
-    fig.savefig(png, dpi=120)
-    print("wrote", os.path.relpath(png, pu.ROOT))
+    pu.save_figure(fig, tag)
 
     print(f"\n{tag}: {title}")
     print("| joints | dilation | status | TV/range " + " | ".join(k for k, _, _ in SERIES)

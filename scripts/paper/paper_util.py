@@ -18,6 +18,14 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 OUT = os.path.join(ROOT, "out", "paper")
 
 
+def save_figure(fig, name):
+    """Writes out/paper/<name>.png and says so."""
+    os.makedirs(OUT, exist_ok=True)
+    png = os.path.join(OUT, name + ".png")
+    fig.savefig(png, dpi=120)
+    print("wrote", os.path.relpath(png, ROOT))
+
+
 def binary():
     return os.environ.get("SCPDYN_BIN", os.path.join(ROOT, "build", "bin", "scpdyn"))
 

@@ -177,9 +177,7 @@ def plot_speed(scene, ref, runs):
                  f"S = {scene.reference[2]} ({rs['elements']} elements, {rs['wall_time']:.1f} s); "
                  "labels: " + scene.level_label, fontsize=8)
     fig.tight_layout()
-    png = os.path.join(pu.OUT, f"speed_accuracy_{scene.key}.png")
-    fig.savefig(png, dpi=120)
-    print("wrote", os.path.relpath(png, pu.ROOT))
+    pu.save_figure(fig, f"speed_accuracy_{scene.key}")
 
 
 def plot_stability(scene, runs):
@@ -206,9 +204,7 @@ def plot_stability(scene, runs):
     fig.suptitle(f"Stability map, {scene.key}: blue = completed (E2 shown), red = stopped (diverging "
                  "contact or inverted element; time after the impact)", fontsize=9)
     fig.tight_layout()
-    png = os.path.join(pu.OUT, f"stability_{scene.key}.png")
-    fig.savefig(png, dpi=120)
-    print("wrote", os.path.relpath(png, pu.ROOT))
+    pu.save_figure(fig, f"stability_{scene.key}")
 
 
 def contact_share(summary):

@@ -1,5 +1,6 @@
 // Contact set-up (step 2 of the paper's cycle): surfaces -> contact faces on device.
 #include "contact/ContactSetup.hpp"
+#include "core/HostCopy.hpp"
 
 #include "mesh/MeshOps.hpp"
 
@@ -177,10 +178,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   }
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
-  F.nodes_used = IndexView("contact_nodes", used.size());
-  auto h_used = Kokkos::create_mirror_view(F.nodes_used);
-  for (size_t k = 0; k < used.size(); ++k)
-    h_used(k) = used[k];
+  F.nodes_used = toDevice(used, "contact_nodes");
 
   F.params = DeviceView<JointParams *>("contact_surface_params", deck.contact.surfaces.size());
   auto h_params = Kokkos::create_mirror_view(F.params);
@@ -188,7 +186,6 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
     h_params(s) = jointParamsOf(deck.contact.surfaces[s], int(s));
 
   hf.copyTo(F);
-  Kokkos::deep_copy(F.nodes_used, h_used);
   Kokkos::deep_copy(F.params, h_params);
   return F;
 }

@@ -1,6 +1,7 @@
 // Contact runtime: set-up, detection with history matching, outputs (scp-method.md 3, 12).
 // The per-cycle force kernels are in ContactForces.cpp.
 #include "contact/ContactSystem.hpp"
+#include "core/HostCopy.hpp"
 #include "contact/ContactKernels.hpp"
 
 #include "parallel/GhostFaces.hpp"
@@ -262,12 +263,8 @@ void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Inde
   }
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());
-  F.nodes_used = IndexView("contact_nodes", used.size());
-  auto h_used = Kokkos::create_mirror_view(F.nodes_used);
-  for (size_t k = 0; k < used.size(); ++k)
-    h_used(k) = used[k];
+  F.nodes_used = toDevice(used, "contact_nodes");
   hf.copyTo(F);
-  Kokkos::deep_copy(F.nodes_used, h_used);
   _faces = F;
   resizeNodeArrays(size_t(node_count));
 }

@@ -80,11 +80,6 @@ std::vector<double> OutputGather::nodes(const std::vector<double> &local, int nc
   return gather(_nodes, local, ncomp, MPI_DOUBLE);
 }
 
-std::vector<double> OutputGather::cells(const std::vector<double> &local, int ncomp) const
-{
-  return gather(_cells, local, ncomp, MPI_DOUBLE);
-}
-
 std::vector<int> OutputGather::cellsInt(const std::vector<int> &local, int ncomp) const
 {
   return gather(_cells, local, ncomp, MPI_INT);

@@ -1,9 +1,8 @@
 #pragma once
 /// \file OutputGather.hpp
-/// \brief Field output of a decomposed run, first step: every rank sends its owned nodes and its
+/// \brief The mesh of a decomposed run's field file: every rank sends its owned nodes and its
 /// elements to rank 0, which puts them in the serial order (global node id; cells in the serial
-/// device order) and writes the same fields.h5 a serial run writes. Built once; each frame
-/// costs one MPI_Gatherv per field.
+/// device order), once at set-up. The frames are written collectively (io/FieldWriter).
 #include <mpi.h>
 
 #include <vector>
@@ -22,10 +21,8 @@ public:
   /// \brief A per-node field with `ncomp` components per local node (local node order): the
   /// global field on rank 0, empty elsewhere. Collective.
   std::vector<double> nodes(const std::vector<double> &local, int ncomp) const;
-  /// \brief The same for a per-cell field (local device element order).
-  std::vector<double> cells(const std::vector<double> &local, int ncomp) const;
-  /// \brief Integers per cell (connectivity lists of variable length are gathered by the
-  /// caller as fixed-width rows).
+  /// \brief Integers per cell, local device element order (connectivity lists of variable
+  /// length are gathered by the caller as fixed-width rows).
   std::vector<int> cellsInt(const std::vector<int> &local, int ncomp) const;
 
   bool root() const { return _rank == 0; }

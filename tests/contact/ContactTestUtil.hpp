@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -135,6 +137,54 @@ inline void nodeMomentum(const Solver &s, double p[3], double *mass = nullptr)
   }
   if (mass)
     *mass = M;
+}
+
+/// node ids of `b` matched to `a` by initial position (x, y to 0.1 um; y = 0 in 1D)
+inline std::vector<Index> matchNodes(const Solver &a, const Solver &b)
+{
+  auto xa = Kokkos::create_mirror_view_and_copy(HostSpace(), a.nodes().x0);
+  auto xb = Kokkos::create_mirror_view_and_copy(HostSpace(), b.nodes().x0);
+  std::map<std::pair<long, long>, Index> at;
+  for (Index n = 0; n < a.nodes().count; ++n)
+    at[{std::lround(xa(n, 0) * 1e7), std::lround(xa(n, 1) * 1e7)}] = n;
+  std::vector<Index> m(size_t(b.nodes().count));
+  for (Index n = 0; n < b.nodes().count; ++n)
+    m[size_t(n)] = at.at({std::lround(xb(n, 0) * 1e7), std::lround(xb(n, 1) * 1e7)});
+  return m;
+}
+
+/// A tied run against its merged one-mesh twin (T6a), x-velocities over the whole run.
+struct TiedComparison
+{
+  double worst = 0;   ///< largest |v_tied - v_merged| of any node and cycle [m/s]
+  double vmax = 0;    ///< largest |v_merged| [m/s]
+  double tension = 0; ///< most tensile CP normal force seen (< 0: tension crossed the tie) [N]
+  Index min_cps = std::numeric_limits<Index>::max(), max_cps = 0; ///< CPs alive, over cycles
+};
+
+/// Cycles both Solvers together to the merged deck's end time; their steps must be equal
+/// (fatal failure otherwise: call it inside ASSERT_NO_FATAL_FAILURE).
+inline void compareTiedToMerged(Solver &merged, Solver &tied, TiedComparison &c)
+{
+  const std::vector<Index> map = matchNodes(merged, tied);
+  while (merged.time() < merged.deck().end_time)
+  {
+    merged.cycle();
+    tied.cycle();
+    ASSERT_EQ(merged.dt(), tied.dt());
+    auto va = Kokkos::create_mirror_view_and_copy(HostSpace(), merged.nodes().v);
+    auto vb = Kokkos::create_mirror_view_and_copy(HostSpace(), tied.nodes().v);
+    for (Index n = 0; n < tied.nodes().count; ++n)
+    {
+      c.worst = std::max(c.worst, std::fabs(vb(n, 0) - va(map[size_t(n)], 0)));
+      c.vmax = std::max(c.vmax, std::fabs(va(map[size_t(n)], 0)));
+    }
+    const Index cps = tied.contact()->count();
+    c.min_cps = std::min(c.min_cps, cps), c.max_cps = std::max(c.max_cps, cps);
+    auto state = Kokkos::create_mirror_view_and_copy(HostSpace(), tied.contact()->planes().state);
+    for (Index p = 0; p < cps; ++p)
+      c.tension = std::min(c.tension, state(p).Fn);
+  }
 }
 
 } // namespace scpdyn::test
