@@ -11,6 +11,9 @@ usage: /usr/bin/python3 scripts/verification/plot_taylor.py [--convergence] [--t
                  decks have 10 x 66) into out/<deck>_nr5, out/<deck>_nr20 and prints a table.
   --t7a          also runs taylor_t7a_cu_227.yaml (bilinear J2 code-to-code benchmark, T7a:
                  L_f in [21.2, 21.9] mm, R_f in [6.8, 7.4] mm, measured at the end, 80 us).
+  --velocities   also runs the copper deck at the two slower tests of the same rod in
+                 verification.md T7b (130 and 146 m/s, Johnson & Cook 1983's own tests) into
+                 out/taylor_ofhc_130, out/taylor_ofhc_146 (docs/verification_materials.md).
 
 Measures (verification.md T7b; docs/verification_materials.md):
   L_f  mean of the top node's y over the last 40 us (the wall holds the impact face, so the
@@ -58,6 +61,20 @@ TEST_PROFILES = {
         [3.881, 10.105], [3.881, 12.150], [3.748, 14.255], [3.783, 16.300], [3.774, 18.311],
         [3.765, 20.365], [3.810, 22.496]]),
 }
+# The same copper rod at the slower tests of verification.md T7b, the profiles of Johnson & Cook
+# (1983) as digitized in the same repository (taylorCuJohnsonCook130.dat, ...146.dat): speed,
+# test L_f, test D_f (verification.md), profile (radius, height) [mm].
+COPPER_SWEEP = [
+    (130, 19.56e-3, 9.91e-3, np.array([
+        [4.765, 0.000], [4.593, 2.067], [4.464, 4.099], [4.455, 6.037], [4.446, 8.181],
+        [4.360, 10.075], [4.266, 12.012], [4.214, 13.993], [4.077, 15.818], [3.819, 17.755],
+        [3.810, 19.649]])),
+    (146, 18.69e-3, 10.67e-3, np.array([
+        [5.147, 0.000], [4.716, 2.055], [4.664, 4.075], [4.620, 6.216], [4.514, 8.107],
+        [4.391, 10.300], [4.215, 12.363], [4.039, 14.634], [3.907, 16.706], [3.810, 18.873]])),
+]
+for _v, _l, _d, _p in COPPER_SWEEP:
+    TEST_PROFILES[f"taylor_ofhc_{_v}"] = _p
 PROFILE_FRACTIONS = (0.1, 0.25, 0.4, 0.55, 0.7)  # heights (fractions of the test L_f) compared
 
 
@@ -190,6 +207,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--convergence", action="store_true")
     ap.add_argument("--t7a", action="store_true")
+    ap.add_argument("--velocities", action="store_true")
     ap.add_argument("--out", default="out")
     args = ap.parse_args()
     rows = []
@@ -212,6 +230,16 @@ def main():
                 vout = f"{out}_nr{nr}"
                 s = su.run(su.deck_path(name), vout, elements=[nr, nl])
                 rows.append((name, nr, s, measure(vout), Lx, Dx))
+    if args.velocities:
+        for v, Lx, Dx, _ in COPPER_SWEEP:
+            name = f"taylor_ofhc_{v}"
+            out = os.path.join(args.out, name)
+            s = su.run(su.deck_path("taylor_ofhc_190"), out,
+                       substitutions=[(r"initial_velocity: \[0\.0, -190\.0\]", f"initial_velocity: [0.0, -{v}.0]")])
+            m = measure(out)
+            report(name, f"OFHC copper, {v} m/s", Lx, Dx, m, s)
+            print(f"  wrote {plot(out, name, f'OFHC copper, {v} m/s', 25.4e-3, 7.62e-3, Lx, Dx, m, s)}")
+            rows.append((name, 10, s, m, Lx, Dx))
     print("\n| case | elements (r x L) | h [mm] | L_f [mm] (error) | D_f [mm] (error) | EPS_max | "
           "balance | cycles | wall [s] |")
     print("|---|---|---|---|---|---|---|---|---|")

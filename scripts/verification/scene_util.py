@@ -22,20 +22,23 @@ def deck_path(name):
     return os.path.join(ROOT, "inputs", "verification", name + ".yaml")
 
 
-def run(deck, out, elements=None, force=False):
+def run(deck, out, elements=None, force=False, substitutions=()):
     """Runs `deck` into `out` unless out/summary.json exists. With `elements` (a list), the
-    deck's single `elements: [...]` entry is replaced and the variant deck is written into out.
-    Returns the summary dict."""
+    deck's single `elements: [...]` entry is replaced; each (pattern, text) of `substitutions`
+    replaces its one match. A variant deck is written into out. Returns the summary dict."""
     summary = os.path.join(out, "summary.json")
     if force or not os.path.exists(summary):
         os.makedirs(out, exist_ok=True)
         path = deck
+        subs = list(substitutions)
         if elements is not None:
+            subs.append((r"elements: \[[0-9, ]+\]", "elements: [" + ", ".join(str(e) for e in elements) + "]"))
+        if subs:
             text = open(deck).read()
-            text, n = re.subn(r"elements: \[[0-9, ]+\]",
-                              "elements: [" + ", ".join(str(e) for e in elements) + "]", text)
-            if n != 1:
-                raise RuntimeError(f"{deck}: expected one 'elements:' entry, found {n}")
+            for pattern, replacement in subs:
+                text, n = re.subn(pattern, replacement, text)
+                if n != 1:
+                    raise RuntimeError(f"{deck}: expected one match of '{pattern}', found {n}")
             path = os.path.join(out, os.path.basename(deck))
             with open(path, "w") as f:
                 f.write(text)

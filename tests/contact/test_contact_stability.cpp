@@ -86,17 +86,33 @@ TEST(ContactStability, T10bImplicitStableAndExplicitSmallStepAgrees)
   }
   EXPECT_TRUE(allFinite(h));
   // (T10b) interface pressure histories over the run (0-3 us). verification.md asks E2 <= 5 %;
-  // measured 8.2 %, since new CPs start at the closure of x^n (docs/theory.md, contact runtime):
-  // at S = 0.5 the joint's 0.3 us rise takes three steps, and the implicit run's own
-  // time-discretisation error against implicit S = 0.05 is 4.6 % (the explicit S = 0.05 run
-  // oscillates 5.6 % about implicit S = 0.05). The former 4.0-4.5 % came with both runs
-  // pre-closed by Vn dt/2 (0.26 a at S = 0.5, 0.026 a at S = 0.05), i.e. different joints.
+  // measured 8.2 %. It adds two errors (docs/verification.md, "T10b: why not 5 %"): the implicit
+  // run's own time-discretisation error at S = 0.5 (4.6 % against implicit S = 0.05: at
+  // S = 0.5 the joint's 0.3 us rise takes three steps) and the explicit joint's undamped
+  // ringing (explicit S = 0.05 against implicit S = 0.05: 5.6 %). The limit is 10 %.
   std::vector<double> ti, pi, te, pe;
   interfacePressure(di, ti, pi);
   interfacePressure(de, te, pe);
   const double e2 = historyE2(te, pe, ti, pi, 0, 3e-6);
   EXPECT_LT(e2, 0.10) << e2;
   RecordProperty("E2_explicit_S0.05_vs_implicit_S0.5", sci(e2));
+  // The host's own error at S = 0.5 against S = 0.05, same meshes and gauges, the blocks tied
+  // (sticky: no joint, so no contact-method error): measured 5.8 %. The 5 % of T10b asks the
+  // joint pair to agree better across S = 0.5 / 0.05 than the host agrees with itself; this
+  // guards that finding (if it fails, the host got more accurate and 5 % should be retried).
+  std::string tied = readText(paperDeck("fig5_implicit_S0.5"));
+  tied = replaced(tied, "option: implicit", "option: sticky");
+  const std::string d5 = runDeck(tied, "fig5_tied_S0.5");
+  const std::string d05 = runDeck(replaced(tied, "courant: 0.5", "courant: 0.05"), "fig5_tied_S0.05");
+  std::vector<double> t5, p5, t05, p05;
+  interfacePressure(d5, t5, p5);
+  interfacePressure(d05, t05, p05);
+  const double e2_host = historyE2(t5, p5, t05, p05, 0, 3e-6);
+  EXPECT_GT(e2_host, 0.05) << e2_host;
+  // and the joint pair stays within 1.6x the host's own error (measured 1.41x; two independent
+  // errors of 4.6 % and 5.6 % would give 1.25x)
+  EXPECT_LT(e2, 1.6 * e2_host) << e2 << " vs host " << e2_host;
+  RecordProperty("E2_tied_S0.5_vs_tied_S0.05", sci(e2_host));
 }
 
 // With the limit (19) on (C_safe = 0.5) the explicit update runs at S = 0.5: the time step
