@@ -14,6 +14,9 @@ usage: /usr/bin/python3 scripts/verification/plot_taylor.py [--convergence] [--t
   --velocities   also runs the copper deck at the two slower tests of the same rod in
                  verification.md T7b (130 and 146 m/s, Johnson & Cook 1983's own tests) into
                  out/taylor_ofhc_130, out/taylor_ofhc_146 (docs/verification_materials.md).
+  --zafit        also runs taylor_ofhc_190_zafit.yaml (Johnson-Cook constants fitted to the
+                 Zerilli-Armstrong copper surface, fit_jc_to_za.py: the model-form check);
+                 with --velocities at 130 and 146 m/s too.
 
 Measures (verification.md T7b; docs/verification_materials.md):
   L_f  mean of the top node's y over the last 40 us (the wall holds the impact face, so the
@@ -74,7 +77,9 @@ COPPER_SWEEP = [
         [4.391, 10.300], [4.215, 12.363], [4.039, 14.634], [3.907, 16.706], [3.810, 18.873]])),
 ]
 for _v, _l, _d, _p in COPPER_SWEEP:
-    TEST_PROFILES[f"taylor_ofhc_{_v}"] = _p
+    TEST_PROFILES[f"taylor_ofhc_{_v}"] = TEST_PROFILES[f"taylor_ofhc_{_v}_zafit"] = _p
+TEST_PROFILES["taylor_ofhc_190_zafit"] = TEST_PROFILES["taylor_ofhc_190"]
+ZAFIT = ("taylor_ofhc_190_zafit", "OFHC copper, 190 m/s, JC fitted to ZA", 25.4e-3, 7.62e-3, 16.21e-3, 13.56e-3)
 PROFILE_FRACTIONS = (0.1, 0.25, 0.4, 0.55, 0.7)  # heights (fractions of the test L_f) compared
 
 
@@ -208,10 +213,11 @@ def main():
     ap.add_argument("--convergence", action="store_true")
     ap.add_argument("--t7a", action="store_true")
     ap.add_argument("--velocities", action="store_true")
+    ap.add_argument("--zafit", action="store_true")
     ap.add_argument("--out", default="out")
     args = ap.parse_args()
     rows = []
-    for name, label, L0, D0, Lx, Dx in CASES + ([T7A] if args.t7a else []):
+    for name, label, L0, D0, Lx, Dx in CASES + ([ZAFIT] if args.zafit else []) + ([T7A] if args.t7a else []):
         out = os.path.join(args.out, name)
         summary = su.run(su.deck_path(name), out)
         m = measure(out, averaged=name != T7A[0])
@@ -231,15 +237,17 @@ def main():
                 s = su.run(su.deck_path(name), vout, elements=[nr, nl])
                 rows.append((name, nr, s, measure(vout), Lx, Dx))
     if args.velocities:
-        for v, Lx, Dx, _ in COPPER_SWEEP:
-            name = f"taylor_ofhc_{v}"
-            out = os.path.join(args.out, name)
-            s = su.run(su.deck_path("taylor_ofhc_190"), out,
-                       substitutions=[(r"initial_velocity: \[0\.0, -190\.0\]", f"initial_velocity: [0.0, -{v}.0]")])
-            m = measure(out)
-            report(name, f"OFHC copper, {v} m/s", Lx, Dx, m, s)
-            print(f"  wrote {plot(out, name, f'OFHC copper, {v} m/s', 25.4e-3, 7.62e-3, Lx, Dx, m, s)}")
-            rows.append((name, 10, s, m, Lx, Dx))
+        for deck in ["taylor_ofhc_190"] + (["taylor_ofhc_190_zafit"] if args.zafit else []):
+            for v, Lx, Dx, _ in COPPER_SWEEP:
+                name = deck.replace("190", str(v))
+                label = f"OFHC copper, {v} m/s" + (", JC fitted to ZA" if "zafit" in deck else "")
+                out = os.path.join(args.out, name)
+                s = su.run(su.deck_path(deck), out, substitutions=[
+                    (r"initial_velocity: \[0\.0, -190\.0\]", f"initial_velocity: [0.0, -{v}.0]")])
+                m = measure(out)
+                report(name, label, Lx, Dx, m, s)
+                print(f"  wrote {plot(out, name, label, 25.4e-3, 7.62e-3, Lx, Dx, m, s)}")
+                rows.append((name, 10, s, m, Lx, Dx))
     print("\n| case | elements (r x L) | h [mm] | L_f [mm] (error) | D_f [mm] (error) | EPS_max | "
           "balance | cycles | wall [s] |")
     print("|---|---|---|---|---|---|---|---|---|")
