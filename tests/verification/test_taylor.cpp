@@ -113,28 +113,38 @@ void checkEnergyAndWall(const TaylorResult &r)
   EXPECT_LT(r.balance, 0.01);
 }
 
+/// Runs `name` at 8 x 53 and checks it against the test: L_f within 3 % and D_f within 8 %
+/// (verification.md T7b), the wall and the energy, and the side radius at the heights y of
+/// `profile` (y, r) [m] within profile_tol.
+template <size_t K>
+void checkAgainstTest(const char *name, Real length, Real foot,
+                      const std::pair<Real, Real> (&profile)[K], Real profile_tol)
+{
+  const TaylorResult r = runTaylor(name, "8, 53");
+  EXPECT_NEAR(r.length / length, 1.0, 0.03);
+  EXPECT_NEAR(r.foot / foot, 1.0, 0.08);
+  checkEnergyAndWall(r);
+  for (const auto &yr : profile)
+  {
+    const Real ratio = radiusAt(r.side, yr.first) / yr.second;
+    std::printf("[T7b %s] side radius at y = %.2f mm: %+.2f %% of the test\n", name,
+                1e3 * yr.first, 100 * (ratio - 1));
+    EXPECT_NEAR(ratio, 1.0, profile_tol) << "y = " << yr.first;
+  }
+}
+
 } // namespace
 
 TEST(TaylorBarT7b, Steel4340At208)
 {
   // test (Johnson & Cook 1983): L_f = 22.48 mm, D_f = 11.1 mm; measured here +0.2 %, -3.8 %
-  const TaylorResult r = runTaylor("taylor_4340_208", "8, 53");
-  EXPECT_NEAR(r.length / 22.48e-3, 1.0, 0.03); // verification.md T7b tolerances
-  EXPECT_NEAR(r.foot / 11.1e-3, 1.0, 0.08);
-  checkEnergyAndWall(r);
   // the whole side profile, not only its ends: radius at 25 / 40 / 55 % of the test length
   // against the test profile (JC 1983 p. 546 as digitized in plot_taylor.py TEST_PROFILES,
   // interpolated there: 4.084 / 3.935 / 3.867 mm). Measured at 10 x 66: -0.3, -1.3, -1.3 %.
   // 3 % = digitizing a 4 mm radius off a printed figure (~1-2 %) plus the model's share
   const std::pair<Real, Real> test[] = {{5.624e-3, 4.084e-3}, {8.998e-3, 3.935e-3},
                                         {12.373e-3, 3.867e-3}};
-  for (const auto &yr : test)
-  {
-    const Real ratio = radiusAt(r.side, yr.first) / yr.second;
-    std::printf("[T7b taylor_4340_208] side radius at y = %.2f mm: %+.2f %% of the test\n",
-                1e3 * yr.first, 100 * (ratio - 1));
-    EXPECT_NEAR(ratio, 1.0, 0.03) << "y = " << yr.first;
-  }
+  checkAgainstTest("taylor_4340_208", 22.48e-3, 11.1e-3, test, 0.03);
 }
 
 TEST(TaylorBarT7b, OfhcCopperAt190)
@@ -164,21 +174,11 @@ TEST(TaylorBarT7b, OfhcCopperWithZaShapedCurveMeetsTolerance)
   // / 10 x 66 / 20 x 133: +2.4 / +2.65 / +2.8 / +3.15 %, i.e. ~3 % converged, within the fit's
   // 2.5 % rms misfit to ZA; D_f -0.7 .. +0.4 %; side radius at 8 x 53 -1.5 / -2.7 / -3.7 % at
   // 25 / 40 / 55 % of the test length), so the JC 1983 set's +6.8 % is the constants.
-  const TaylorResult r = runTaylor("taylor_ofhc_190_zafit", "8, 53");
-  EXPECT_NEAR(r.length / 16.21e-3, 1.0, 0.03); // verification.md T7b tolerances
-  EXPECT_NEAR(r.foot / 13.56e-3, 1.0, 0.08);
-  checkEnergyAndWall(r);
   // the copper test profile (plot_taylor.py TEST_PROFILES, Zerilli & Armstrong 1987 as
   // digitized, interpolated there: 5.074 / 4.957 / 4.703 mm at 25 / 40 / 55 % of 16.205 mm);
   // 5 %: digitizing (~1-3 %, the copper foot reads 13.68 against the quoted 13.56 mm) plus
   // the fitted curve's 2.5 % rms misfit to ZA
   const std::pair<Real, Real> test[] = {{4.0513e-3, 5.074e-3}, {6.482e-3, 4.957e-3},
                                         {8.9128e-3, 4.703e-3}};
-  for (const auto &yr : test)
-  {
-    const Real ratio = radiusAt(r.side, yr.first) / yr.second;
-    std::printf("[T7b taylor_ofhc_190_zafit] side radius at y = %.2f mm: %+.2f %% of the test\n",
-                1e3 * yr.first, 100 * (ratio - 1));
-    EXPECT_NEAR(ratio, 1.0, 0.05) << "y = " << yr.first;
-  }
+  checkAgainstTest("taylor_ofhc_190_zafit", 16.21e-3, 13.56e-3, test, 0.05);
 }
