@@ -103,6 +103,8 @@ public:
   Real storedEnergy() const { return _stored; }
   Real dissipatedEnergy() const { return _work - _stored; }
   Index count() const { return _cp.count; }
+  /// \brief Largest contact-face diameter at the last search [m] (the same on every rank).
+  Real largestFaceSize() const { return _geom.h_max; }
   Index maxCount() const { return _max_count; }
   const ContactFaceData &faces() const { return _faces; }
   const CommonPlaneData &planes() const { return _cp; }

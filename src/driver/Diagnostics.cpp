@@ -2,6 +2,7 @@
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
+#include "contact/JointGauge.hpp"
 #include "driver/Decomposition.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -39,6 +40,8 @@ void Solver::setupGauges()
   {
     const GaugeSpec &spec = _deck.gauges[g];
     const std::string key = _deck.path + ": gauges[" + std::to_string(g) + "]";
+    if (spec.kind == "joint" && !_contact)
+      throw InputError(key + ".kind: a joint gauge needs a 'contact' section");
     const bool on_element = spec.kind == "element";
     Index id = spec.id;
     if (spec.has_point)
@@ -88,6 +91,19 @@ void Solver::setupGauges()
                   : on_element                       ? _host_to_device_element[size_t(local)]
                   : _dd->owned[size_t(local)] != 0   ? local
                                                      : -1;
+    }
+    if (spec.kind == "joint") // the node nearest the point carries the gauge with the material
+    {
+      const auto &names = jointGaugeQuantities();
+      for (const auto &q : spec.quantities)
+      {
+        const int code = int(std::find(names.begin(), names.end(), q) - names.begin());
+        _gauges.push_back({spec.name + ":" + q, false, -1, code, int(_joint_gauges.size())});
+        ids.push_back(-1);
+        codes.push_back(0);
+      }
+      _joint_gauges.push_back({device_id, spec.radius});
+      continue;
     }
     for (const auto &q : spec.quantities)
     {
@@ -157,7 +173,47 @@ std::vector<Real> Solver::gaugeValues() const
   std::vector<Real> out(h.data(), h.data() + count);
   if (_dd) // exact: one rank holds each value, the others add zeros
     allReduceSum(out.data(), int(count), _comm);
+  if (!_joint_gauges.empty())
+    jointGaugeValues(out);
   return out;
+}
+
+void Solver::jointGaugeValues(std::vector<Real> &out) const
+{
+  // each rank's sums over its CPs, added over the ranks, then the quantities
+  // the anchor nodes' positions, from the ranks that own them
+  const size_t n = _joint_gauges.size();
+  std::vector<Real> centre(3 * n, 0.0);
+  for (size_t j = 0; j < n; ++j)
+    if (_joint_gauges[j].anchor >= 0)
+    {
+      auto x = Kokkos::create_mirror_view_and_copy(
+          HostSpace(), Kokkos::subview(_nodes.x, _joint_gauges[j].anchor, Kokkos::ALL));
+      for (int i = 0; i < 3; ++i)
+        centre[3 * j + size_t(i)] = x(i);
+    }
+  if (_dd)
+    allReduceSum(centre.data(), int(centre.size()), _comm);
+  constexpr int K = JointGaugeSums::kCount;
+  std::vector<Real> sums(n * K, 0.0);
+  for (size_t j = 0; j < n; ++j)
+  {
+    const Real r = _joint_gauges[j].radius;
+    const Real radius = r > 0 ? r : 0.5 * _contact->largestFaceSize();
+    const JointGaugeSums s =
+        jointGaugeSums(_contact->planes(), _contact->faces(), &centre[3 * j], radius);
+    std::copy(s.begin(), s.begin() + K, sums.begin() + long(j * K));
+  }
+  if (_dd)
+    allReduceSum(sums.data(), int(sums.size()), _comm);
+  for (size_t k = 0; k < _gauges.size(); ++k)
+    if (_gauges[k].joint >= 0)
+    {
+      JointGaugeSums s;
+      std::copy(sums.begin() + long(size_t(_gauges[k].joint) * K),
+                sums.begin() + long(size_t(_gauges[k].joint) * K + K), s.begin());
+      out[k] = jointGaugeQuantity(s, _gauges[k].quantity);
+    }
 }
 
 EnergyReport Solver::energies() const

@@ -48,6 +48,7 @@ struct GaugeSlot
   bool on_element = false;
   Index id = -1;
   int quantity = 0;
+  int joint = -1; ///< joint gauges: index of the gauge's point and radius (else -1)
 };
 
 class Solver
@@ -110,6 +111,7 @@ private:
   void setupSets();
   void setupBoundaryConditions();
   void setupGauges();
+  void jointGaugeValues(std::vector<Real> &out) const;
   void setupInitialState();
   void setupContact();
   void decompose();
@@ -151,6 +153,14 @@ private:
   BoundaryConditions _bc;
   ElementControls _controls;
   std::vector<GaugeSlot> _gauges;
+  /// joint gauges: the CPs within `radius` [m] (0: half the largest contact face) of the node
+  /// nearest the gauge's point (device id on the rank that owns it, else -1)
+  struct JointGauge
+  {
+    Index anchor = -1;
+    Real radius = 0;
+  };
+  std::vector<JointGauge> _joint_gauges;
   IndexView _gauge_id;       ///< device copies of the gauge slots
   IndexView _gauge_code;     ///< quantity code, + 100 for element quantities
   std::vector<int> _part_spec;                 ///< deck parts[] entry of every mesh part

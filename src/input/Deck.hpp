@@ -88,12 +88,23 @@ struct BoundaryConditionSpec
 struct GaugeSpec
 {
   std::string name;
-  std::string kind = "node"; ///< node | element
+  std::string kind = "node"; ///< node | element | joint
   Index id = -1;             ///< node or element id (0-based), or -1 when `point` is given
   bool has_point = false;
   std::array<Real, 3> point{{0, 0, 0}}; ///< nearest node / containing-or-nearest element
+  Real radius = 0; ///< joint gauges: CPs within this distance of `point` [m]; 0: default
   std::vector<std::string> quantities;  ///< see docs/input.md
 };
+
+/// \brief The quantities of a joint gauge (docs/input.md); contact/JointGauge.hpp computes
+/// quantity k of this list.
+inline const std::vector<std::string> &jointGaugeQuantities()
+{
+  static const std::vector<std::string> names = {"normal_stress", "shear_stress", "normal_force",
+                                                 "shear_force",   "area",         "closure",
+                                                 "slip",          "count"};
+  return names;
+}
 
 /// \brief One contact surface (docs/input.md, `contact.surfaces[]`): the external faces it covers
 /// (a part, a `prefix*` of parts, or a face set) and the face-based contact condition they

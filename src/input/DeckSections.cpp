@@ -206,7 +206,7 @@ void parseGauges(const YamlMap &root, Deck &deck)
   std::map<std::string, int> seen;
   for (const YamlValue &item : root["gauges"].list())
   {
-    const YamlMap m = item.map({"name", "node", "element", "point", "kind", "quantities"});
+    const YamlMap m = item.map({"name", "node", "element", "point", "kind", "radius", "quantities"});
     GaugeSpec g;
     g.name = m["name"].string();
     claimName(seen, m["name"], g.name);
@@ -215,7 +215,7 @@ void parseGauges(const YamlMap &root, Deck &deck)
     {
       g.has_point = true;
       g.point = m["point"].realVector(deck.dimension);
-      g.kind = m.choice("kind", {"node", "element"}, "node");
+      g.kind = m.choice("kind", {"node", "element", "joint"}, "node");
     }
     else
     {
@@ -228,8 +228,21 @@ void parseGauges(const YamlMap &root, Deck &deck)
         m[where].fail("must be an id >= 0, got " + m[where].text());
       g.id = static_cast<Index>(id);
     }
-    const auto &mine = g.kind == "node" ? kNodeQuantities : kElementQuantities;
-    const auto &other = g.kind == "node" ? kElementQuantities : kNodeQuantities;
+    if (g.kind == "joint")
+    {
+      if (!root.has("contact"))
+        m["kind"].fail("a joint gauge needs a 'contact' section (it reads the common planes)");
+      g.radius = readReal(m, "radius", 0, isPositive, "> 0");
+    }
+    else if (m.has("radius"))
+      m["radius"].fail("only used by joint gauges (kind: joint)");
+    const auto &mine = g.kind == "node"      ? kNodeQuantities
+                       : g.kind == "element" ? kElementQuantities
+                                             : jointGaugeQuantities();
+    std::vector<std::string> other;
+    for (const auto *list : {&kNodeQuantities, &kElementQuantities, &jointGaugeQuantities()})
+      if (list != &mine)
+        other.insert(other.end(), list->begin(), list->end());
     for (const YamlValue &q : m["quantities"].list(1))
     {
       const std::string name = q.string();

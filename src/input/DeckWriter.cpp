@@ -142,6 +142,8 @@ void writeGauge(YAML::Emitter &out, const GaugeSpec &g, int dim)
   {
     vector(out, "point", g.point, dim);
     out << YAML::Key << "kind" << YAML::Value << g.kind;
+    if (g.kind == "joint" && g.radius > 0)
+      real(out << YAML::Key << "radius" << YAML::Value, g.radius);
   }
   else
     out << YAML::Key << g.kind << YAML::Value << g.id;
