@@ -80,6 +80,17 @@ struct LaneOps<LanePack>
     return r;
   }
 };
+
+/// \brief kElementLanes consecutive Reals from p (no alignment needed): one vector load.
+inline LanePack loadPack(const Real *p)
+{
+  LanePack r;
+  __builtin_memcpy(&r, p, sizeof r);
+  return r;
+}
+
+/// \brief a to kElementLanes consecutive Reals at p (no alignment needed): one vector store.
+inline void storePack(Real *p, const LanePack &a) { __builtin_memcpy(p, &a, sizeof a); }
 #endif
 
 } // namespace scpdyn

@@ -5,6 +5,7 @@
 #include "material/JohnsonCook.hpp"
 #include "material/Jwl.hpp"
 #include "material/MaterialParams.hpp"
+#include "material/MetalUpdate.hpp"
 #include "material/TensorOps.hpp"
 
 namespace scpdyn
@@ -89,38 +90,23 @@ KOKKOS_INLINE_FUNCTION Real updateMaterial(const MaterialParams &p, const Materi
   if (p.model == MaterialModel::HighExplosive)
     return highExplosiveUpdate(p, st, stress, e, history);
 
-  const Real rho_mid = 0.5 * (st.rho_old + st.rho_new);
-  const Real trD = trace(st.D);
-  Real s_old[6];
-  for (int k = 0; k < 6; ++k)
-    s_old[k] = stress[k];
-  const Real p_old = -makeDeviatoric(s_old);
-
-  // deviatoric trial and return
-  Real s[6];
-  for (int k = 0; k < 6; ++k)
-    s[k] = s_old[k] + 2 * p.shear * st.dt * st.D[k];
-  s[0] -= 2 * p.shear * st.dt * trD / 3;
-  s[1] -= 2 * p.shear * st.dt * trD / 3;
-  s[2] -= 2 * p.shear * st.dt * trD / 3;
+  // the stages live in MetalUpdate.hpp, templated, so the element lanes run the same text
+  Real s_old[6], s[6], p_old, trD;
+  metalTrial(p, st.D, st.dt, stress, s_old, s, p_old, trD);
   if (p.model == MaterialModel::ElasticPlastic)
     eps += radialReturn(p, s, eps);
   else if (p.model == MaterialModel::JohnsonCook)
     johnsonCookDeviatoric(p, st, s, eps, history);
 
-  Real s_mid[6];
-  for (int k = 0; k < 6; ++k)
-    s_mid[k] = 0.5 * (s_old[k] + s[k]);
-  const Real h = st.dt / rho_mid;
-  const Real e_star = e + h * (contract(s_mid, st.D) - 0.5 * p_old * trD - st.q * trD);
+  Real h;
+  const Real e_star = metalEnergyStar(s_old, s, st.D, trD, p_old, st.q, st.dt, st.rho_old,
+                                      st.rho_new, e, h);
 
   Real p_new = 0, c2 = 0;
   switch (p.eos)
   {
   case EosModel::Linear:
-    p_new = p_old - p.bulk * st.dt * trD;
-    e = e_star - 0.5 * h * p_new * trD;
-    c2 = (p.bulk + 4.0 / 3.0 * p.shear) / st.rho_new;
+    c2 = linearEos(p, p_old, trD, st.dt, h, e_star, st.rho_new, p_new, e);
     break;
   case EosModel::MieGruneisen:
   {
@@ -139,13 +125,18 @@ KOKKOS_INLINE_FUNCTION Real updateMaterial(const MaterialParams &p, const Materi
   case EosModel::Jwl: // only with HighExplosive, dispatched above
     break;
   }
-  for (int k = 0; k < 6; ++k)
-    stress[k] = s[k];
-  stress[0] -= p_new;
-  stress[1] -= p_new;
-  stress[2] -= p_new;
-  const Real c2_floor = 1e-6 * (p.bulk + 4.0 / 3.0 * p.shear) / p.density;
+  metalStress(s, p_new, stress);
+  const Real c2_floor = soundSpeedSquaredFloor(p);
   return kmath::sqrt(c2 > c2_floor ? c2 : c2_floor);
+}
+
+/// \brief Whether updateMaterial() reads or writes the history slots for this model: the
+/// elastic and J2 models (any EOS) do not, so the element kernel skips their 8 slots (load
+/// and store: they keep the zeros initializeMaterialHistory() gave them). Johnson-Cook
+/// (temperature), the geomaterial and the high explosive do.
+KOKKOS_INLINE_FUNCTION constexpr bool modelUsesHistory(MaterialModel m)
+{
+  return !(m == MaterialModel::Elastic || m == MaterialModel::ElasticPlastic);
 }
 
 } // namespace scpdyn

@@ -1,0 +1,338 @@
+#pragma once
+/// \file ElementKernel.hpp
+/// \brief The functor of step 6 (internal to InternalForce.cpp): the element step of one
+/// element (any type) or of a pack of kElementLanes hexes, loading and storing the element
+/// state and scattering the forces.
+#include "element/ElementSolver.hpp"
+#include "element/InternalForce.hpp"
+
+namespace scpdyn
+{
+namespace element_kernel
+{
+
+/// How element forces reach the nodes: atomic adds; plain adds (one thread: the same sums in
+/// the same order, without the ~7 ns lock of each of the 24 atomic adds of a hex); or
+/// per-corner stores for gatherCornerForces().
+enum class Scatter
+{
+  Atomic,
+  Plain,
+  Corners
+};
+
+/// \brief Step 6 for the elements of one group: element e alone (any type), or a pack of
+/// kElementLanes hexes (lane l = element first + l), with the same results bit for bit.
+template <ElementType T, bool Axi>
+struct ElementKernel
+{
+  static constexpr int N = ElementTraits<T>::nodes;
+  ConnView conn;
+  VectorView x_n, v_n;
+  AtomicVectorView f_atomic;
+  VectorView f_plain;
+  DeviceView<Real * [kMaxElementNodes][3]> corner_force;
+  IndexView mat_id;
+  RealView e_mass, e_volume, e_energy, e_eps, e_q, e_c, e_hg;
+  SymTensorView e_stress;
+  DeviceView<Real * [kHistorySize]> e_hist;
+  DeviceView<Real * [kHourglassSize]> e_hgq;
+  DeviceView<MaterialParams *> materials;
+  ElementControls ctl;
+  Scatter scatter;
+  Real half_dt;
+
+  /// Loads element e's state; its history slots only if `history` (modelUsesHistory()).
+  KOKKOS_INLINE_FUNCTION void loadState(const Index e, const bool history, ElementState &s) const
+  {
+    for (int k = 0; k < 6; ++k)
+      s.stress[k] = e_stress(e, k);
+    s.energy = e_energy(e);
+    s.plastic_strain = e_eps(e);
+    s.volume = e_volume(e);
+    s.mass = e_mass(e);
+    s.sound_speed = e_c(e);
+    s.q = e_q(e);
+    for (int k = 0; k < kHistorySize; ++k)
+      s.history[k] = history ? e_hist(e, k) : Real(0);
+    for (int k = 0; k < kHourglassSize; ++k)
+      s.hourglass[k] = e_hgq(e, k);
+  }
+
+  /// Stores the state (the history slots from `history` unless it is null: the model uses
+  /// none), books the hourglass work and scatters the forces of element e (or flags it in
+  /// local_min if its step failed).
+  KOKKOS_INLINE_FUNCTION void finish(const Index e, const Real *history, const ElementState &s,
+                                     const ElementResult &r, Real &local_min) const
+  {
+    if (!(r.stable_dt > 0))
+    {
+      const Real flag = -Real(e + 1);
+      local_min = flag < local_min ? flag : local_min;
+      return;
+    }
+    for (int k = 0; k < 6; ++k)
+      e_stress(e, k) = s.stress[k];
+    e_energy(e) = s.energy;
+    e_eps(e) = s.plastic_strain;
+    e_volume(e) = s.volume;
+    e_c(e) = s.sound_speed;
+    e_q(e) = r.q;
+    e_hg(e) += r.hourglass_power * 2 * half_dt;
+    if (history)
+      for (int k = 0; k < kHistorySize; ++k)
+        e_hist(e, k) = history[k];
+    for (int k = 0; k < kHourglassSize; ++k)
+      e_hgq(e, k) = s.hourglass[k];
+    scatterForces(e, r.force);
+    local_min = r.stable_dt < local_min ? r.stable_dt : local_min;
+  }
+
+  /// Element e's nodal forces to f_int (atomic or plain adds) or to its corner slots.
+  KOKKOS_INLINE_FUNCTION void scatterForces(const Index e, const Real force[][3]) const
+  {
+    if (scatter == Scatter::Corners)
+    {
+      for (int a = 0; a < N; ++a)
+        for (int i = 0; i < 3; ++i)
+          corner_force(e, a, i) = force[a][i];
+    }
+    else if (scatter == Scatter::Plain)
+    {
+      for (int a = 0; a < N; ++a)
+      {
+        const Index n = conn(e, a);
+        for (int i = 0; i < ElementTraits<T>::dim; ++i)
+          f_plain(n, i) += force[a][i];
+      }
+    }
+    else
+    {
+      for (int a = 0; a < N; ++a)
+      {
+        const Index n = conn(e, a);
+        for (int i = 0; i < ElementTraits<T>::dim; ++i)
+          f_atomic(n, i) += force[a][i];
+      }
+    }
+  }
+
+  KOKKOS_INLINE_FUNCTION void one(const Index e, Real &local_min) const
+  {
+    Real x[N][3], v[N][3];
+    for (int a = 0; a < N; ++a)
+    {
+      const Index n = conn(e, a);
+      for (int i = 0; i < 3; ++i)
+      {
+        v[a][i] = v_n(n, i);
+        x[a][i] = x_n(n, i) + half_dt * v[a][i];
+      }
+    }
+    const MaterialParams &mat = materials(mat_id(e));
+    const bool history = modelUsesHistory(mat.model);
+    ElementState s;
+    loadState(e, history, s);
+    ElementResult r;
+    elementStep<T, Axi>(x, v, mat, ctl, s, r);
+    finish(e, history ? s.history : nullptr, s, r, local_min);
+  }
+
+#ifdef SCPDYN_ELEMENT_LANES
+  // A pack of W consecutive elements reads and writes its state with vector loads and stores:
+  // every state View is LayoutRight with a compile-time extent (or 1-D), so the slots of
+  // elements first .. first + W - 1 are one contiguous run from data() + first * extent.
+
+  /// The pack's state (not the history slots): lanes el[0..W-1].
+  KOKKOS_INLINE_FUNCTION void loadPackState(const Index first, const int count, const Index el[],
+                                            ElementStateOf<LanePack> &s) const
+  {
+    constexpr int W = kElementLanes;
+    if (count == W)
+    {
+      s.energy = loadPack(e_energy.data() + first);
+      s.plastic_strain = loadPack(e_eps.data() + first);
+      s.volume = loadPack(e_volume.data() + first);
+      s.mass = loadPack(e_mass.data() + first);
+      s.sound_speed = loadPack(e_c.data() + first);
+      s.q = loadPack(e_q.data() + first);
+      const Real *stress = e_stress.data() + 6 * size_t(first);
+      const Real *hg = e_hgq.data() + kHourglassSize * size_t(first);
+      for (int l = 0; l < W; ++l)
+      {
+        for (int j = 0; j < 6; ++j)
+          s.stress[j][l] = stress[6 * l + j];
+        for (int j = 0; j < kHourglassSize; ++j)
+          s.hourglass[j][l] = hg[kHourglassSize * l + j];
+      }
+      return;
+    }
+    for (int l = 0; l < W; ++l)
+    {
+      const Index e = el[l];
+      for (int j = 0; j < 6; ++j)
+        s.stress[j][l] = e_stress(e, j);
+      s.energy[l] = e_energy(e);
+      s.plastic_strain[l] = e_eps(e);
+      s.volume[l] = e_volume(e);
+      s.mass[l] = e_mass(e);
+      s.sound_speed[l] = e_c(e);
+      s.q[l] = e_q(e);
+      for (int j = 0; j < kHourglassSize; ++j)
+        s.hourglass[j][l] = e_hgq(e, j);
+    }
+  }
+
+  /// finish()'s stores for a full pack (elements first .. first + W - 1) whose steps all
+  /// succeeded, as vector stores; false (nothing stored) if one did not.
+  KOKKOS_INLINE_FUNCTION bool storePackState(const Index first, const ElementStateOf<LanePack> &s,
+                                             const ElementResultOf<LanePack> &r,
+                                             const bool uses_history[],
+                                             const Real hist[][kHistorySize]) const
+  {
+    constexpr int W = kElementLanes;
+    for (int l = 0; l < W; ++l)
+      if (!(r.stable_dt[l] > 0))
+        return false;
+    storePack(e_energy.data() + first, s.energy);
+    storePack(e_eps.data() + first, s.plastic_strain);
+    storePack(e_volume.data() + first, s.volume);
+    storePack(e_c.data() + first, s.sound_speed);
+    storePack(e_q.data() + first, r.q);
+    Real *hge = e_hg.data() + first;
+    storePack(hge, loadPack(hge) + r.hourglass_power * Real(2) * half_dt);
+    Real *stress = e_stress.data() + 6 * size_t(first);
+    Real *hg = e_hgq.data() + kHourglassSize * size_t(first);
+    for (int l = 0; l < W; ++l)
+    {
+      for (int j = 0; j < 6; ++j)
+        stress[6 * l + j] = s.stress[j][l];
+      for (int j = 0; j < kHourglassSize; ++j)
+        hg[kHourglassSize * l + j] = s.hourglass[j][l];
+      if (uses_history[l])
+        for (int j = 0; j < kHistorySize; ++j)
+          e_hist(first + l, j) = hist[l][j];
+    }
+    return true;
+  }
+
+  /// Elements first .. first + count - 1 (count <= kElementLanes) as one pack; the lanes past
+  /// count repeat the last element and are dropped. The material update runs on the pack when
+  /// all lanes share an elastic + linear EOS material (elasticLinearUpdate, updateMaterial's
+  /// own stages), else lane by lane.
+  KOKKOS_INLINE_FUNCTION void pack(const Index first, const int count, Real &local_min) const
+  {
+    constexpr int W = kElementLanes;
+    using P = LanePack;
+    Index el[W];
+    for (int l = 0; l < W; ++l)
+      el[l] = first + (l < count ? l : count - 1);
+    P x[N][3], v[N][3];
+    for (int a = 0; a < N; ++a)
+      for (int l = 0; l < W; ++l)
+      {
+        const Index n = conn(el[l], a);
+        for (int i = 0; i < 3; ++i)
+        {
+          const Real vi = v_n(n, i);
+          v[a][i][l] = vi;
+          x[a][i][l] = x_n(n, i) + half_dt * vi;
+        }
+      }
+    ElementKinematicsOf<T, P> k;
+    elementGeometry<T, Axi>(x, k);
+    bool valid = true;
+    for (int l = 0; l < W; ++l)
+      valid = valid && k.V[l] > 0 && k.measure[l] > 0;
+    if (!valid) // an inverted element: the scalar path reports it (and stops the run)
+    {
+      for (int l = 0; l < count; ++l)
+        one(el[l], local_min);
+      return;
+    }
+    ElementStateOf<P> s;
+    loadPackState(first, count, el, s);
+    elementRates<T, Axi>(v, ctl, s, k);
+    P c;
+    Real hist[W][kHistorySize];
+    bool uses_history[W] = {}; // the elastic and J2 models leave their slots alone
+    const Index m0 = mat_id(el[0]);
+    bool one_material = true;
+    for (int l = 1; l < W; ++l)
+      one_material = one_material && mat_id(el[l]) == m0;
+    if (one_material && isElasticLinear(materials(m0)))
+    {
+      // the elastic update on the pack: updateMaterial's own stages (MetalUpdate.hpp)
+      const MaterialParams &mp = materials(m0);
+      const P c2 = elasticLinearUpdate(mp, k.D, ctl.dt, k.rho_old, k.rho_new, k.q_mean,
+                                       s.stress, s.energy);
+      c = LaneOps<P>::sqrt(LaneOps<P>::max(c2, LaneOps<P>::broadcast(soundSpeedSquaredFloor(mp))));
+    }
+    else // one lane at a time (it reads the history slots directly)
+      for (int l = 0; l < W; ++l)
+      {
+        const Index e = el[l];
+        const MaterialParams &mat = materials(mat_id(e));
+        uses_history[l] = modelUsesHistory(mat.model);
+        MaterialStep st;
+        for (int j = 0; j < 6; ++j)
+          st.D[j] = k.D[j][l];
+        st.dt = ctl.dt;
+        st.rho_old = k.rho_old[l];
+        st.rho_new = k.rho_new[l];
+        st.q = k.q_mean[l];
+        st.time = ctl.half_time;
+        st.length = k.length[l];
+        Real stress[6];
+        for (int j = 0; j < 6; ++j)
+          stress[j] = s.stress[j][l];
+        for (int j = 0; j < kHistorySize; ++j)
+          hist[l][j] = uses_history[l] ? e_hist(e, j) : Real(0);
+        Real energy = s.energy[l], eps = s.plastic_strain[l];
+        c[l] = updateMaterial(mat, st, stress, energy, eps, hist[l]);
+        for (int j = 0; j < 6; ++j)
+          s.stress[j][l] = stress[j];
+        s.energy[l] = energy;
+        s.plastic_strain[l] = eps;
+      }
+    ElementResultOf<P> r;
+    elementForces<T, Axi>(x, v, ctl, k, c, s, r);
+    if (count == W && storePackState(first, s, r, uses_history, hist))
+    {
+      for (int l = 0; l < W; ++l)
+      {
+        Real force[N][3];
+        for (int a = 0; a < N; ++a)
+          for (int i = 0; i < 3; ++i)
+            force[a][i] = r.force[a][i][l];
+        scatterForces(el[l], force);
+        local_min = r.stable_dt[l] < local_min ? r.stable_dt[l] : local_min;
+      }
+      return;
+    }
+    for (int l = 0; l < count; ++l)
+    {
+      ElementState sl;
+      ElementResult rl;
+      for (int j = 0; j < 6; ++j)
+        sl.stress[j] = s.stress[j][l];
+      sl.energy = s.energy[l];
+      sl.plastic_strain = s.plastic_strain[l];
+      sl.volume = s.volume[l];
+      sl.sound_speed = s.sound_speed[l];
+      for (int j = 0; j < kHourglassSize; ++j)
+        sl.hourglass[j] = s.hourglass[j][l];
+      for (int a = 0; a < N; ++a)
+        for (int i = 0; i < 3; ++i)
+          rl.force[a][i] = r.force[a][i][l];
+      rl.q = r.q[l];
+      rl.hourglass_power = r.hourglass_power[l];
+      rl.stable_dt = r.stable_dt[l];
+      finish(el[l], uses_history[l] ? hist[l] : nullptr, sl, rl, local_min);
+    }
+  }
+#endif
+};
+
+} // namespace element_kernel
+} // namespace scpdyn
