@@ -189,7 +189,7 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
   k.rho_new = s.mass / k.V;
 
   const R trD = k.D[0] + k.D[1] + k.D[2];
-  // the viscosity length (a cbrt call in 3D) is needed in compression only
+  // the viscosity length (a cube root in 3D) is needed in compression only
   if constexpr (Ops::width == 1)
   {
     k.q_new = zero;
@@ -199,12 +199,9 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
       k.q_new = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
     }
   }
-  else // lanes (hex8): cbrt per compressed lane, the same expression, 0 elsewhere
+  else // lanes (hex8): the same expression in every lane, kept where compressed, 0 elsewhere
   {
-    R lq = zero;
-    for (int l = 0; l < Ops::width; ++l)
-      if (trD[l] < 0)
-        lq[l] = kmath::cbrt(k.measure[l]);
+    const R lq = Ops::cbrt(k.measure);
     const R q = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
     k.q_new = trD < 0 ? q : zero;
   }

@@ -146,7 +146,7 @@ KOKKOS_INLINE_FUNCTION R hourglassForces(const R x[][3], const R v[][3], const R
     for (int a = 0; a < N; ++a)
       for (int i = 0; i < D; ++i)
         BB += B[a][i] * B[a][i];
-    const Real Vs = D == 3 ? kmath::cbrt(V * V) : V;
+    const Real Vs = D == 3 ? LaneOps<Real>::cbrt(V * V) : V;
     const Real visc = 0.25 * kappa * rho * c * Vs;
     const Real stiff = kappa * rho * c * c * V * BB / N * dt;
     for (int k = 0; k < M; ++k)

@@ -5,11 +5,15 @@
 /// hex8 elements at once, one per vector lane). Every lane does the scalar arithmetic in the
 /// scalar order, so a pack gives the bits of W scalar calls (IEEE +, -, *, / and sqrt are
 /// correctly rounded in vector registers too; no FMA contraction without -march flags, and
-/// SCPDYN_NATIVE adds -ffp-contract=off). cbrt has no bit-identical vector form: one call a lane.
+/// SCPDYN_NATIVE adds -ffp-contract=off). The cube root is laneCbrt, vector arithmetic too.
 ///
 /// The pack is a GCC/Clang vector type, host only: device builds (and other compilers) use
 /// one lane, i.e. the scalar path. LaneOps<R> is the small interface the templates need.
 #include "core/Types.hpp"
+
+#include <cfloat>
+#include <cstdint>
+#include <cstring>
 
 namespace scpdyn
 {
@@ -26,6 +30,103 @@ constexpr int kElementLanes = 2; ///< x86-64 baseline: SSE2, 2 doubles a registe
 typedef Real LanePack __attribute__((vector_size(sizeof(Real) * kElementLanes)));
 #else
 constexpr int kElementLanes = 1;
+#endif
+
+#ifdef SCPDYN_ELEMENT_LANES
+// laneCbrt: the cube root of the element step, the same arithmetic on one double or a pack.
+// Why not glibc's cbrt: it is a library call per lane (about 30 ns, ~8 % of the hex8 cycle:
+// perf/README.md), and it is not correctly rounded (3 ulp off at worst, off by one or more ulp
+// for half of all arguments: tests/element/test_lane_cbrt.cpp). This one is vector arithmetic
+// only (~5 ns a value on AVX-512) and rounds correctly but for ~0.03 % of the arguments, which
+// are 1 ulp off:
+// - start: the exponent divided by three through the bit pattern read as an integer
+//   (`bits/3 + 682·2^52` is 2^(e/3)·(1 + m/3) for x = 2^e (1 + m): within 6 %);
+// - two Halley steps y ← y (y³ + 2x)/(2y³ + x) (cubic: 6 % → 1e-4 → 1e-12);
+// - one Newton step y − (y³ − x)/(3y²) with the residual y³ − x formed almost exactly by
+//   Dekker's splitting (exact products without FMA, so -ffp-contract=off keeps the bits).
+// Arguments that are not positive normal numbers (0, negatives, subnormals, inf, NaN) take
+// kmath::cbrt lane by lane.
+namespace lane_cbrt
+{
+
+/// Float-to-bits and back, and the integer start value, for one double.
+struct ScalarBits
+{
+  static inline Real start(Real x)
+  {
+    std::int64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    const std::int64_t g = std::int64_t(Real(b) * (1.0 / 3.0)) + (std::int64_t(682) << 52);
+    Real y;
+    std::memcpy(&y, &g, sizeof y);
+    return y;
+  }
+};
+
+/// Dekker's exact product a·b = p + e (Veltkamp split at 27 bits), valid without FMA.
+template <class R>
+inline void twoProduct(const R &a, const R &b, R &p, R &e)
+{
+  const Real split = 134217729.0; // 2^27 + 1
+  const R ca = split * a, ah = ca - (ca - a), al = a - ah;
+  const R cb = split * b, bh = cb - (cb - b), bl = b - bh;
+  p = a * b;
+  e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+}
+
+/// The refinement from a start value within ~6 % (the same operations for any R).
+template <class R>
+inline R refine(const R &x, R y)
+{
+  for (int k = 0; k < 2; ++k)
+  {
+    const R y3 = y * y * y;
+    y = y * ((y3 + 2 * x) / (2 * y3 + x)); // the ratio first: y·(y³ + 2x) under/overflows
+  }
+  R p2, e2, p3, e3;
+  twoProduct(y, y, p2, e2);
+  twoProduct(y, p2, p3, e3);
+  const R residual = ((p3 - x) + e3) + y * e2; // y³ − x; p3 − x is exact (Sterbenz)
+  return y - residual / (3 * p2);
+}
+
+inline bool positiveNormal(Real x) { return x >= DBL_MIN && x <= DBL_MAX; }
+
+} // namespace lane_cbrt
+
+/// \brief Cube root of a positive normal x, correctly rounded but for ~0.03 % of arguments
+/// (1 ulp); other x as kmath::cbrt.
+inline Real laneCbrt(Real x)
+{
+  if (!lane_cbrt::positiveNormal(x))
+    return kmath::cbrt(x);
+  return lane_cbrt::refine(x, lane_cbrt::ScalarBits::start(x));
+}
+
+/// \brief The same, lane by lane bit-identical to laneCbrt(Real), in vector arithmetic.
+inline LanePack laneCbrt(const LanePack &x)
+{
+  typedef std::int64_t LaneInt __attribute__((vector_size(sizeof(LanePack))));
+  bool normal = true;
+  for (int l = 0; l < kElementLanes; ++l)
+    normal = normal && lane_cbrt::positiveNormal(x[l]);
+  if (!normal)
+  {
+    LanePack r;
+    for (int l = 0; l < kElementLanes; ++l)
+      r[l] = laneCbrt(x[l]);
+    return r;
+  }
+  LaneInt bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const LaneInt g =
+      __builtin_convertvector(__builtin_convertvector(bits, LanePack) * (1.0 / 3.0), LaneInt) +
+      (std::int64_t(682) << 52);
+  LanePack y;
+  std::memcpy(&y, &g, sizeof y);
+  return lane_cbrt::refine(x, y);
+}
+
 #endif
 
 /// R with template argument deduction switched off (scalar arguments of the R functions may
@@ -48,7 +149,14 @@ struct LaneOps<Real>
   KOKKOS_INLINE_FUNCTION static Real broadcast(Real a) { return a; }
   KOKKOS_INLINE_FUNCTION static Real max(Real a, Real b) { return a > b ? a : b; }
   KOKKOS_INLINE_FUNCTION static Real sqrt(Real a) { return kmath::sqrt(a); }
-  KOKKOS_INLINE_FUNCTION static Real cbrt(Real a) { return kmath::cbrt(a); }
+  KOKKOS_INLINE_FUNCTION static Real cbrt(Real a)
+  {
+#ifdef SCPDYN_ELEMENT_LANES
+    return laneCbrt(a);
+#else
+    return kmath::cbrt(a);
+#endif
+  }
 };
 
 #ifdef SCPDYN_ELEMENT_LANES
@@ -72,13 +180,7 @@ struct LaneOps<LanePack>
       r[l] = kmath::sqrt(a[l]);
     return r;
   }
-  static inline LanePack cbrt(const LanePack &a)
-  {
-    LanePack r;
-    for (int l = 0; l < width; ++l)
-      r[l] = kmath::cbrt(a[l]);
-    return r;
-  }
+  static inline LanePack cbrt(const LanePack &a) { return laneCbrt(a); }
 };
 
 /// \brief kElementLanes consecutive Reals from p (no alignment needed): one vector load.
