@@ -180,8 +180,8 @@ std::vector<Real> Solver::gaugeValues() const
 
 void Solver::jointGaugeValues(std::vector<Real> &out) const
 {
-  // each rank's sums over its CPs, added over the ranks, then the quantities
-  // the anchor nodes' positions, from the ranks that own them
+  // the anchor nodes' positions from the ranks that own them; then each rank's sums over its
+  // CPs near them, added over the ranks; then the quantities
   const size_t n = _joint_gauges.size();
   std::vector<Real> centre(3 * n, 0.0);
   for (size_t j = 0; j < n; ++j)
