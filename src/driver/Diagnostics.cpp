@@ -12,22 +12,6 @@
 
 namespace scpdyn
 {
-namespace
-{
-const char *kNodeQuantities[] = {"x", "y", "z", "dx", "dy", "dz", "vx", "vy", "vz"};
-const char *kElementQuantities[] = {"sxx",      "syy",     "szz",            "sxy",    "syz", "szx",
-                                    "pressure", "density", "plastic_strain", "energy", "q"};
-
-int quantityCode(const std::string &q, bool on_element)
-{
-  const char **names = on_element ? kElementQuantities : kNodeQuantities;
-  const int count = on_element ? 11 : 9;
-  for (int k = 0; k < count; ++k)
-    if (q == names[k])
-      return k;
-  return -1;
-}
-} // namespace
 
 void Solver::setupGauges()
 {
@@ -92,29 +76,23 @@ void Solver::setupGauges()
                   : _dd->owned[size_t(local)] != 0   ? local
                                                      : -1;
     }
-    if (spec.kind == "joint") // the node nearest the point carries the gauge with the material
-    {
-      const auto &names = jointGaugeQuantities();
-      for (const auto &q : spec.quantities)
-      {
-        const int code = int(std::find(names.begin(), names.end(), q) - names.begin());
-        _gauges.push_back({spec.name + ":" + q, false, -1, code, int(_joint_gauges.size())});
-        ids.push_back(-1);
-        codes.push_back(0);
-      }
-      _joint_gauges.push_back({device_id, spec.radius});
-      continue;
-    }
+    const bool joint = spec.kind == "joint"; // the nearest node carries it with the material
+    const auto &names = gaugeQuantities(spec.kind);
     for (const auto &q : spec.quantities)
     {
-      const int code = quantityCode(q, on_element);
-      if (code < 0)
+      const int code = int(std::find(names.begin(), names.end(), q) - names.begin());
+      if (code == int(names.size()))
         throw InputError(key + ".quantities: unknown quantity '" + q + "' for a " + spec.kind +
                          " gauge");
-      _gauges.push_back({spec.name + ":" + q, on_element, device_id, code});
-      ids.push_back(device_id);
-      codes.push_back(code + (on_element ? 100 : 0));
+      // a joint gauge's slot is filled by jointGaugeValues(); the kernel leaves it at 0
+      const Index slot_id = joint ? -1 : device_id;
+      _gauges.push_back({spec.name + ":" + q, on_element, slot_id, code,
+                         joint ? int(_joint_gauges.size()) : -1});
+      ids.push_back(slot_id);
+      codes.push_back(joint ? 0 : code + (on_element ? 100 : 0));
     }
+    if (joint)
+      _joint_gauges.push_back({device_id, spec.radius});
   }
   _gauge_id = IndexView("gauge_id", ids.size());
   _gauge_code = IndexView("gauge_code", codes.size());

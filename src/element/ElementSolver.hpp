@@ -94,41 +94,15 @@ KOKKOS_INLINE_FUNCTION void midpointVelocityGradient(const R Lh[3][3], Real half
   }
 }
 
-/// \brief hughesWingetRotation() and rotateSymmetric() of material/TensorOps.hpp for R (the
-/// same arithmetic in the same order, so Real gives their bits): rotates the stress by the
-/// spin w over dt, and the stiffness hourglass resistances with it if `hourglass`.
+/// \brief Rotates the stress by the spin w over dt (hughesWingetRotation(), rotateSymmetric()),
+/// and the stiffness hourglass resistances with it if `hourglass`.
 template <int modes, class R>
 KOKKOS_INLINE_FUNCTION void rotateElementState(const R w[3], Real dt, bool hourglass, R stress[6],
                                                R Q[kHourglassSize])
 {
-  const R a0 = 0.5 * dt * w[0], a1 = 0.5 * dt * w[1], a2 = 0.5 * dt * w[2];
-  const R zero = LaneOps<R>::broadcast(0);
-  const R A[3][3] = {{zero, -a2, a1}, {a2, zero, -a0}, {-a1, a0, zero}};
-  const R scale = Real(2) / (Real(1) + a0 * a0 + a1 * a1 + a2 * a2);
   R R_[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-    {
-      const R A2 = A[i][0] * A[0][j] + A[i][1] * A[1][j] + A[i][2] * A[2][j];
-      R_[i][j] = Real(i == j ? 1 : 0) + scale * (A[i][j] + A2);
-    }
-  const R S[3][3] = {{stress[0], stress[3], stress[5]},
-                     {stress[3], stress[1], stress[4]},
-                     {stress[5], stress[4], stress[2]}};
-  R RS[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      RS[i][j] = R_[i][0] * S[0][j] + R_[i][1] * S[1][j] + R_[i][2] * S[2][j];
-  R out[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j)
-      out[i][j] = RS[i][0] * R_[j][0] + RS[i][1] * R_[j][1] + RS[i][2] * R_[j][2];
-  stress[0] = out[0][0];
-  stress[1] = out[1][1];
-  stress[2] = out[2][2];
-  stress[3] = out[0][1];
-  stress[4] = out[1][2];
-  stress[5] = out[0][2];
+  hughesWingetRotation(w, dt, R_);
+  rotateSymmetric(R_, stress);
   if (hourglass)
     for (int k = 0; k < modes; ++k)
     {

@@ -49,19 +49,20 @@ constexpr int kElementLanes = 1;
 namespace lane_cbrt
 {
 
-/// Float-to-bits and back, and the integer start value, for one double.
-struct ScalarBits
+/// The start value's exponent offset, 682 = 1023 - 1023/3 (see the start step above).
+constexpr std::int64_t kStartOffset = std::int64_t(682) << 52;
+
+/// The start value of one double: its bit pattern read as an integer, divided by three (in
+/// double arithmetic, as the pack's conversions do), plus the offset, read back as a double.
+inline Real start(Real x)
 {
-  static inline Real start(Real x)
-  {
-    std::int64_t b;
-    std::memcpy(&b, &x, sizeof b);
-    const std::int64_t g = std::int64_t(Real(b) * (1.0 / 3.0)) + (std::int64_t(682) << 52);
-    Real y;
-    std::memcpy(&y, &g, sizeof y);
-    return y;
-  }
-};
+  std::int64_t b;
+  std::memcpy(&b, &x, sizeof b);
+  const std::int64_t g = std::int64_t(Real(b) * (1.0 / 3.0)) + kStartOffset;
+  Real y;
+  std::memcpy(&y, &g, sizeof y);
+  return y;
+}
 
 /// Dekker's exact product a·b = p + e (Veltkamp split at 27 bits), valid without FMA.
 template <class R>
@@ -100,7 +101,7 @@ inline Real laneCbrt(Real x)
 {
   if (!lane_cbrt::positiveNormal(x))
     return kmath::cbrt(x);
-  return lane_cbrt::refine(x, lane_cbrt::ScalarBits::start(x));
+  return lane_cbrt::refine(x, lane_cbrt::start(x));
 }
 
 /// \brief The same, lane by lane bit-identical to laneCbrt(Real), in vector arithmetic.
@@ -121,7 +122,7 @@ inline LanePack laneCbrt(const LanePack &x)
   std::memcpy(&bits, &x, sizeof bits);
   const LaneInt g =
       __builtin_convertvector(__builtin_convertvector(bits, LanePack) * (1.0 / 3.0), LaneInt) +
-      (std::int64_t(682) << 52);
+      lane_cbrt::kStartOffset;
   LanePack y;
   std::memcpy(&y, &g, sizeof y);
   return lane_cbrt::refine(x, y);

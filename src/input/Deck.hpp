@@ -96,14 +96,32 @@ struct GaugeSpec
   std::vector<std::string> quantities;  ///< see docs/input.md
 };
 
-/// \brief The quantities of a joint gauge (docs/input.md); contact/JointGauge.hpp computes
-/// quantity k of this list.
+/// \brief The quantities of each gauge kind (docs/input.md), in the order of their codes: a
+/// quantity's index here is what the driver evaluates (driver/Diagnostics.cpp; for joint
+/// gauges contact/JointGauge.hpp).
+inline const std::vector<std::string> &nodeGaugeQuantities()
+{
+  static const std::vector<std::string> names = {"x", "y", "z", "dx", "dy", "dz", "vx", "vy", "vz"};
+  return names;
+}
+inline const std::vector<std::string> &elementGaugeQuantities()
+{
+  static const std::vector<std::string> names = {
+      "sxx", "syy", "szz", "sxy", "syz", "szx", "pressure", "density", "plastic_strain", "energy", "q"};
+  return names;
+}
 inline const std::vector<std::string> &jointGaugeQuantities()
 {
   static const std::vector<std::string> names = {"normal_stress", "shear_stress", "normal_force",
                                                  "shear_force",   "area",         "closure",
                                                  "slip",          "count"};
   return names;
+}
+/// \brief The quantity list of a gauge kind ("node", "element" or "joint").
+inline const std::vector<std::string> &gaugeQuantities(const std::string &kind)
+{
+  return kind == "node" ? nodeGaugeQuantities() : kind == "element" ? elementGaugeQuantities()
+                                                                    : jointGaugeQuantities();
 }
 
 /// \brief One contact surface (docs/input.md, `contact.surfaces[]`): the external faces it covers

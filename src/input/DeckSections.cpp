@@ -156,11 +156,6 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
   }
 }
 
-const std::vector<std::string> kNodeQuantities = {"x", "y", "z", "dx", "dy", "dz", "vx", "vy", "vz"};
-const std::vector<std::string> kElementQuantities = {
-    "sxx",      "syy",     "szz",            "sxy",    "syz", "szx",
-    "pressure", "density", "plastic_strain", "energy", "q"};
-
 } // namespace
 
 void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::path &deck_dir)
@@ -236,13 +231,11 @@ void parseGauges(const YamlMap &root, Deck &deck)
     }
     else if (m.has("radius"))
       m["radius"].fail("only used by joint gauges (kind: joint)");
-    const auto &mine = g.kind == "node"      ? kNodeQuantities
-                       : g.kind == "element" ? kElementQuantities
-                                             : jointGaugeQuantities();
+    const auto &mine = gaugeQuantities(g.kind);
     std::vector<std::string> other;
-    for (const auto *list : {&kNodeQuantities, &kElementQuantities, &jointGaugeQuantities()})
-      if (list != &mine)
-        other.insert(other.end(), list->begin(), list->end());
+    for (const char *kind : {"node", "element", "joint"})
+      if (&gaugeQuantities(kind) != &mine)
+        other.insert(other.end(), gaugeQuantities(kind).begin(), gaugeQuantities(kind).end());
     for (const YamlValue &q : m["quantities"].list(1))
     {
       const std::string name = q.string();
