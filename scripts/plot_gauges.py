@@ -21,6 +21,10 @@ def read_csv(path):
     return {h: [float(r[k]) for r in data] for k, h in enumerate(head)}
 
 
+# element quantities in Pa (docs/input.md)
+STRESSES = ("sxx", "syy", "szz", "sxy", "syz", "szx", "pressure", "q")
+
+
 def main(out_dir):
     gauges = read_csv(os.path.join(out_dir, "gauges.csv"))
     history = read_csv(os.path.join(out_dir, "history.csv"))
@@ -30,14 +34,16 @@ def main(out_dir):
         if col == "time":
             continue
         q = col.split(":")[-1]
-        kind = "stress / pressure [MPa]" if q.startswith("s") or q in ("pressure", "q") else q
-        kind = "velocity [m/s]" if q.startswith("v") else kind
+        kind = "stress / pressure [MPa]" if q in STRESSES else q
+        kind = "velocity [m/s]" if q in ("vx", "vy", "vz") else kind
         kind = "displacement [mm]" if q in ("dx", "dy", "dz") else kind
+        kind = "joint stress [MPa], compression +" if q in ("normal_stress", "shear_stress") else kind
+        kind = "joint closure, slip [mm]" if q in ("closure", "slip") else kind
         groups.setdefault(kind, []).append(col)
     n = len(groups) + 1
     fig, axes = plt.subplots(n, 1, figsize=(8, 2.6 * n), sharex=True, squeeze=False)
     for ax, (kind, cols) in zip(axes[:, 0], sorted(groups.items())):
-        scale = 1e-6 if "MPa" in kind else 1e3 if "mm" in kind else 1.0
+        scale = 1e-6 if "MPa" in kind else 1e3 if "[mm]" in kind else 1.0
         for c in cols:
             ax.plot(t, [scale * v for v in gauges[c]], label=c)
         ax.set_ylabel(kind)
