@@ -137,30 +137,8 @@ inline KernelExtras makeKernelExtras(const Solver &s)
     h_mat(i) = makeMaterialParams(deck.materials[i]);
   Kokkos::deep_copy(k.materials, h_mat);
 
-  const ElementFields &el = s.elements();
-  const Index nn = s.nodes().count;
-  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), el.conn);
-  std::vector<std::vector<Index>> lists(static_cast<size_t>(nn));
-  for (Index e = 0; e < el.count; ++e)
-    for (int a = 0; a < kMaxElementNodes; ++a)
-      if (conn(e, a) >= 0)
-        lists[size_t(conn(e, a))].push_back(e * kMaxElementNodes + a);
-  k.corners.offsets = IndexView("bench_offsets", size_t(nn) + 1);
-  auto h_off = Kokkos::create_mirror_view(k.corners.offsets);
-  std::vector<Index> flat;
-  h_off(0) = 0;
-  for (Index n = 0; n < nn; ++n)
-  {
-    flat.insert(flat.end(), lists[size_t(n)].begin(), lists[size_t(n)].end());
-    h_off(n + 1) = Index(flat.size());
-  }
-  k.corners.corners = IndexView("bench_corners", flat.size());
-  auto h_list = Kokkos::create_mirror_view(k.corners.corners);
-  std::copy(flat.begin(), flat.end(), h_list.data());
-  Kokkos::deep_copy(k.corners.offsets, h_off);
-  Kokkos::deep_copy(k.corners.corners, h_list);
-  k.corners.corner_force =
-      DeviceView<Real * [kMaxElementNodes][3]>("bench_corner_force", size_t(el.count));
+  k.corners = makeNodeCorners(s.elements(), s.groups(), s.nodes().count,
+                              ExecSpace().concurrency());
   return k;
 }
 

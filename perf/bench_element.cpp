@@ -43,7 +43,8 @@ void BM_HexKernelAtomic(benchmark::State &state)
   setCounters(state, k.solver.elements().count);
 }
 
-/// Element forces written per corner (no atomics); the gather is timed separately.
+/// The deterministic assembly's element step: one chunk a thread, plain adds, corner stores
+/// for the nodes two chunks share (NodeCorners); their gather is timed separately.
 void BM_HexKernelCorners(benchmark::State &state)
 {
   KernelSetup &k = setup();
@@ -57,7 +58,7 @@ void BM_HexKernelCorners(benchmark::State &state)
   setCounters(state, k.solver.elements().count);
 }
 
-/// The corner gather alone (f_int(n) = sum of its corner forces).
+/// The corner gather alone (f_int(n) = sum of its corner forces, for the shared nodes).
 void BM_GatherCornerForces(benchmark::State &state)
 {
   KernelSetup &k = setup();
@@ -69,7 +70,7 @@ void BM_GatherCornerForces(benchmark::State &state)
   setCounters(state, k.solver.elements().count);
 }
 
-/// Corner forces + gather: the deterministic variant of BM_HexKernelAtomic.
+/// Chunks + gather: the deterministic variant of BM_HexKernelAtomic.
 void BM_HexKernelGather(benchmark::State &state)
 {
   KernelSetup &k = setup();
@@ -92,7 +93,7 @@ void BM_ZeroForces(benchmark::State &state)
   const Real g[3] = {0, 0, 0};
   for (auto _ : state)
   {
-    zeroForces(k.solver.nodes(), g, false);
+    zeroForces(k.solver.nodes(), g);
     Kokkos::fence();
   }
   setCounters(state, k.solver.elements().count);

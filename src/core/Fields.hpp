@@ -36,8 +36,8 @@ struct ElementFields
   RealView q;           ///< artificial viscosity pressure [Pa]
   RealView sound_speed; ///< last sound speed [m/s]
   RealView hourglass_energy; ///< accumulated hourglass work [J]
-  DeviceView<Real * [kHistorySize]> history;
-  DeviceView<Real * [kHourglassSize]> hourglass; ///< stiffness-form resistances
+  HistoryView history;
+  HourglassView hourglass; ///< stiffness-form resistances
   Index count = 0;
 };
 
@@ -49,12 +49,18 @@ struct ElementGroup
   Index begin, end;
 };
 
-/// \brief Deterministic assembly: for every node, the element corners (e * 8 + k) that touch
-/// it, in ascending order (compressed rows).
+/// \brief Deterministic assembly with threads (numerics.scatter gather). Step 6 runs every
+/// element group as `chunks` contiguous chunks, one thread each (chunkBegin()); a node whose
+/// elements all lie in one chunk gets plain adds in element order, the same sums as one thread.
+/// A node that two chunks touch is "shared": its element corners store their forces, and
+/// gatherCornerForces() sums them in ascending corner order, again the one-thread order.
 struct NodeCorners
 {
-  IndexView offsets; ///< nodes + 1
+  int chunks = 1;
+  IndexView shared_nodes; ///< the shared nodes
+  IndexView offsets;      ///< shared nodes + 1: their corners (e * 8 + a) in ascending order
   IndexView corners;
+  DeviceView<std::uint8_t *> shared_corners; ///< per element: bit a set if node a is shared
   DeviceView<Real * [kMaxElementNodes][3]> corner_force; ///< per element corner [N]
 };
 

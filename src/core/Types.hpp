@@ -32,7 +32,6 @@ using DeviceView = Kokkos::View<T, Layout, MemSpace>;
 using RealView = DeviceView<Real *>;
 using IndexView = DeviceView<Index *>;
 using VectorView = DeviceView<Real * [3]>;     ///< one 3-vector per node/face/CP
-using SymTensorView = DeviceView<Real * [6]>;  ///< Voigt xx yy zz xy yz zx
 using ConnView = DeviceView<Index **>;         ///< connectivity: entity x local node
 using AtomicVectorView =
     Kokkos::View<Real * [3], Layout, MemSpace, Kokkos::MemoryTraits<Kokkos::Atomic>>;
@@ -41,6 +40,15 @@ constexpr int kMaxElementNodes = 8; ///< hex8
 constexpr int kMaxFaceNodes = 4;    ///< quad face of a hex
 constexpr int kHistorySize = 8;     ///< per-element material history slots
 constexpr int kHourglassSize = 12;  ///< per-element hourglass resistances (4 modes x 3)
+
+/// Element state with several components per element is component-major (LayoutLeft):
+/// component k of consecutive elements is contiguous, so a pack of hexes reads and writes it
+/// with one vector load and store (and a GPU warp coalesces it).
+template <class T>
+using ElementComponentView = Kokkos::View<T, Kokkos::LayoutLeft, MemSpace>;
+using SymTensorView = ElementComponentView<Real * [6]>; ///< Voigt xx yy zz xy yz zx
+using HistoryView = ElementComponentView<Real * [kHistorySize]>;
+using HourglassView = ElementComponentView<Real * [kHourglassSize]>;
 
 /// \brief Element types; the problem dimension follows from the type.
 enum class ElementType : int

@@ -3,7 +3,7 @@
 namespace scpdyn
 {
 
-void zeroForces(const NodeFields &nodes, const Real gravity[3], bool gather)
+void zeroForces(const NodeFields &nodes, const Real gravity[3])
 {
   auto f_int = nodes.f_int;
   auto f_ext = nodes.f_ext;
@@ -12,9 +12,8 @@ void zeroForces(const NodeFields &nodes, const Real gravity[3], bool gather)
   Kokkos::parallel_for(
       "zeroForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n) {
-        if (!gather)
-          for (int i = 0; i < 3; ++i)
-            f_int(n, i) = 0;
+        for (int i = 0; i < 3; ++i)
+          f_int(n, i) = 0;
         const Real m = mass(n);
         f_ext(n, 0) = m * g0;
         f_ext(n, 1) = m * g1;

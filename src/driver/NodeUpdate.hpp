@@ -38,8 +38,8 @@ struct NodeSums
   }
 };
 
-/// \brief Step 5: f_int = 0 (unless the corner gather will overwrite it), f_ext = m g.
-void zeroForces(const NodeFields &nodes, const Real gravity[3], bool gather);
+/// \brief Step 5: f_int = 0, f_ext = m g.
+void zeroForces(const NodeFields &nodes, const Real gravity[3]);
 
 /// \brief Step 12: integrate velocities and positions; returns kinetic energies, external
 /// work and momentum. With `owned` (per node, 1 = this rank owns it) the sums cover the owned

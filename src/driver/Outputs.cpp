@@ -191,10 +191,11 @@ void Outputs::writeFrame()
   auto energy = Kokkos::create_mirror_view_and_copy(HostSpace(), el.energy);
   auto eps = Kokkos::create_mirror_view_and_copy(HostSpace(), el.plastic_strain);
   auto part = Kokkos::create_mirror_view_and_copy(HostSpace(), el.part);
-  std::vector<double> s6(stress.data(), stress.data() + ne * 6), p(ne), rho(ne), e(ne), ep(ne),
-      pt(ne);
+  std::vector<double> s6(ne * 6), p(ne), rho(ne), e(ne), ep(ne), pt(ne);
   for (size_t k = 0; k < ne; ++k)
   {
+    for (int j = 0; j < 6; ++j)
+      s6[6 * k + size_t(j)] = stress(k, j);
     p[k] = -(stress(k, 0) + stress(k, 1) + stress(k, 2)) / 3;
     rho[k] = mass(k) / volume(k);
     e[k] = energy(k);

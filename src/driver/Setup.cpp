@@ -223,8 +223,8 @@ void Solver::setupFields()
   _elems.q = RealView("q", ne);
   _elems.sound_speed = RealView("sound_speed", ne);
   _elems.hourglass_energy = RealView("hourglass_energy", ne);
-  _elems.history = DeviceView<Real * [kHistorySize]>("history", ne);
-  _elems.hourglass = DeviceView<Real * [kHourglassSize]>("hourglass", ne);
+  _elems.history = HistoryView("history", ne);
+  _elems.hourglass = HourglassView("hourglass", ne);
 
   auto h_x0 = Kokkos::create_mirror_view(_nodes.x0);
   auto h_mass = Kokkos::create_mirror_view(_nodes.mass);
@@ -242,7 +242,6 @@ void Solver::setupFields()
     }
     h_mass(n) = 0;
   }
-  std::vector<std::vector<Index>> node_corners(static_cast<size_t>(num_nodes));
   for (size_t p = 0; p < _mesh.parts.size(); ++p)
   {
     const HostPart &part = _mesh.parts[p];
@@ -260,7 +259,6 @@ void Solver::setupFields()
         h_conn(d, a) = n;
         for (int i = 0; i < 3; ++i)
           x[a][i] = _mesh.coords[size_t(n)][size_t(i)];
-        node_corners[size_t(n)].push_back(d * kMaxElementNodes + a);
       }
       const Real m = mat.density * hostElementVolume(part.type, x, axi);
       h_emass(d) = m;
@@ -292,26 +290,7 @@ void Solver::setupFields()
   Kokkos::deep_copy(_materials, h_materials);
 
   if (cornerGather(_deck))
-  {
-    _corners.offsets = IndexView("corner_offsets", size_t(num_nodes) + 1);
-    auto h_off = Kokkos::create_mirror_view(_corners.offsets);
-    std::vector<Index> flat;
-    h_off(0) = 0;
-    for (Index n = 0; n < num_nodes; ++n)
-    {
-      auto &list = node_corners[size_t(n)];
-      std::sort(list.begin(), list.end());
-      flat.insert(flat.end(), list.begin(), list.end());
-      h_off(n + 1) = Index(flat.size());
-    }
-    _corners.corners = IndexView("corners", flat.size());
-    auto h_list = Kokkos::create_mirror_view(_corners.corners);
-    for (size_t k = 0; k < flat.size(); ++k)
-      h_list(k) = flat[k];
-    Kokkos::deep_copy(_corners.offsets, h_off);
-    Kokkos::deep_copy(_corners.corners, h_list);
-    _corners.corner_force = DeviceView<Real * [kMaxElementNodes][3]>("corner_force", ne);
-  }
+    _corners = makeNodeCorners(_elems, _groups, num_nodes, ExecSpace().concurrency());
 }
 
 void Solver::setupSets()

@@ -92,7 +92,7 @@ void Solver::stepContactForces()
 void Solver::stepZeroForces()
 {
   ScopedStep t(_timers, "05_zero_forces");
-  zeroForces(_nodes, _deck.gravity.data(), _controls.gather);
+  zeroForces(_nodes, _deck.gravity.data());
 }
 
 void Solver::stepElementSolvers()

@@ -12,8 +12,8 @@ namespace element_kernel
 {
 
 /// How element forces reach the nodes: atomic adds; plain adds (one thread: the same sums in
-/// the same order, without the ~7 ns lock of each of the 24 atomic adds of a hex); or
-/// per-corner stores for gatherCornerForces().
+/// the same order, without the ~7 ns lock of each of the 24 atomic adds of a hex); or, one
+/// thread per chunk (NodeCorners), plain adds but corner stores for the shared nodes.
 enum class Scatter
 {
   Atomic,
@@ -32,11 +32,12 @@ struct ElementKernel
   AtomicVectorView f_atomic;
   VectorView f_plain;
   DeviceView<Real * [kMaxElementNodes][3]> corner_force;
+  DeviceView<std::uint8_t *> shared_corners;
   IndexView mat_id;
   RealView e_mass, e_volume, e_energy, e_eps, e_q, e_c, e_hg;
   SymTensorView e_stress;
-  DeviceView<Real * [kHistorySize]> e_hist;
-  DeviceView<Real * [kHourglassSize]> e_hgq;
+  HistoryView e_hist;
+  HourglassView e_hgq;
   DeviceView<MaterialParams *> materials;
   ElementControls ctl;
   Scatter scatter;
@@ -93,9 +94,19 @@ struct ElementKernel
   {
     if (scatter == Scatter::Corners)
     {
+      const unsigned shared = shared_corners(e);
       for (int a = 0; a < N; ++a)
-        for (int i = 0; i < 3; ++i)
-          corner_force(e, a, i) = force[a][i];
+      {
+        if (shared >> a & 1u)
+          for (int i = 0; i < 3; ++i)
+            corner_force(e, a, i) = force[a][i];
+        else
+        {
+          const Index n = conn(e, a);
+          for (int i = 0; i < ElementTraits<T>::dim; ++i)
+            f_plain(n, i) += force[a][i];
+        }
+      }
     }
     else if (scatter == Scatter::Plain)
     {
@@ -140,8 +151,11 @@ struct ElementKernel
 
 #ifdef SCPDYN_ELEMENT_LANES
   // A pack of W consecutive elements reads and writes its state with vector loads and stores:
-  // every state View is LayoutRight with a compile-time extent (or 1-D), so the slots of
-  // elements first .. first + W - 1 are one contiguous run from data() + first * extent.
+  // every state View is 1-D or component-major (ElementComponentView), so component j of
+  // elements first .. first + W - 1 is one contiguous run from &view(first, j).
+  static_assert(std::is_same<SymTensorView::array_layout, Kokkos::LayoutLeft>::value &&
+                    std::is_same<HourglassView::array_layout, Kokkos::LayoutLeft>::value,
+                "the pack's vector loads need component-major element state");
 
   /// The pack's state (not the history slots): lanes el[0..W-1].
   KOKKOS_INLINE_FUNCTION void loadPackState(const Index first, const int count, const Index el[],
@@ -156,15 +170,10 @@ struct ElementKernel
       s.mass = loadPack(e_mass.data() + first);
       s.sound_speed = loadPack(e_c.data() + first);
       s.q = loadPack(e_q.data() + first);
-      const Real *stress = e_stress.data() + 6 * size_t(first);
-      const Real *hg = e_hgq.data() + kHourglassSize * size_t(first);
-      for (int l = 0; l < W; ++l)
-      {
-        for (int j = 0; j < 6; ++j)
-          s.stress[j][l] = stress[6 * l + j];
-        for (int j = 0; j < kHourglassSize; ++j)
-          s.hourglass[j][l] = hg[kHourglassSize * l + j];
-      }
+      for (int j = 0; j < 6; ++j)
+        s.stress[j] = loadPack(&e_stress(first, j));
+      for (int j = 0; j < kHourglassSize; ++j)
+        s.hourglass[j] = loadPack(&e_hgq(first, j));
       return;
     }
     for (int l = 0; l < W; ++l)
@@ -201,18 +210,14 @@ struct ElementKernel
     storePack(e_q.data() + first, r.q);
     Real *hge = e_hg.data() + first;
     storePack(hge, loadPack(hge) + r.hourglass_power * Real(2) * half_dt);
-    Real *stress = e_stress.data() + 6 * size_t(first);
-    Real *hg = e_hgq.data() + kHourglassSize * size_t(first);
+    for (int j = 0; j < 6; ++j)
+      storePack(&e_stress(first, j), s.stress[j]);
+    for (int j = 0; j < kHourglassSize; ++j)
+      storePack(&e_hgq(first, j), s.hourglass[j]);
     for (int l = 0; l < W; ++l)
-    {
-      for (int j = 0; j < 6; ++j)
-        stress[6 * l + j] = s.stress[j][l];
-      for (int j = 0; j < kHourglassSize; ++j)
-        hg[kHourglassSize * l + j] = s.hourglass[j][l];
       if (uses_history[l])
         for (int j = 0; j < kHistorySize; ++j)
           e_hist(first + l, j) = hist[l][j];
-    }
     return true;
   }
 
@@ -227,18 +232,20 @@ struct ElementKernel
     Index el[W];
     for (int l = 0; l < W; ++l)
       el[l] = first + (l < count ? l : count - 1);
-    P x[N][3], v[N][3];
+    static_assert(std::is_same<VectorView::array_layout, Kokkos::LayoutRight>::value,
+                  "loadTriples and addTriples read node n's vector at data() + 3 n");
+    Index node[N][W];
     for (int a = 0; a < N; ++a)
       for (int l = 0; l < W; ++l)
-      {
-        const Index n = conn(el[l], a);
-        for (int i = 0; i < 3; ++i)
-        {
-          const Real vi = v_n(n, i);
-          v[a][i][l] = vi;
-          x[a][i][l] = x_n(n, i) + half_dt * vi;
-        }
-      }
+        node[a][l] = conn(el[l], a);
+    P x[N][3], v[N][3];
+    for (int a = 0; a < N; ++a)
+    {
+      loadTriples(v_n.data(), node[a], v[a]);
+      loadTriples(x_n.data(), node[a], x[a]);
+      for (int i = 0; i < 3; ++i)
+        x[a][i] += half_dt * v[a][i];
+    }
     ElementKinematicsOf<T, P> k;
     elementGeometry<T, Axi>(x, k);
     bool valid = true;
@@ -299,6 +306,21 @@ struct ElementKernel
     elementForces<T, Axi>(x, v, ctl, k, c, s, r);
     if (count == W && storePackState(first, s, r, uses_history, hist))
     {
+      bool plain = scatter == Scatter::Plain;
+      if (scatter == Scatter::Corners)
+      {
+        unsigned shared = 0; // does the pack touch a shared node?
+        for (int l = 0; l < W; ++l)
+          shared |= shared_corners(first + l);
+        plain = shared == 0;
+      }
+      if (plain)
+      {
+        addTriples<N>(f_plain.data(), node, r.force);
+        for (int l = 0; l < W; ++l)
+          local_min = r.stable_dt[l] < local_min ? r.stable_dt[l] : local_min;
+        return;
+      }
       for (int l = 0; l < W; ++l)
       {
         Real force[N][3];

@@ -25,6 +25,7 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
   k.f_atomic = nodes.f_int;
   k.f_plain = nodes.f_int;
   k.corner_force = corners.corner_force;
+  k.shared_corners = corners.shared_corners;
   k.mat_id = el.material;
   k.e_mass = el.mass;
   k.e_volume = el.volume;
@@ -42,6 +43,28 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
   k.half_dt = 0.5 * ctl.dt;
 
   Real dt_min = 0;
+  if (scatter == Scatter::Corners) // one chunk a thread, its packs or elements in order
+  {
+    const ElementGroup grp = g;
+    const int chunks = corners.chunks;
+    Kokkos::parallel_reduce(
+        "elementChunks", Kokkos::RangePolicy<ExecSpace>(0, chunks),
+        KOKKOS_LAMBDA(const int c, Real &local_min) {
+          const Index end = chunkBegin(grp, chunks, c + 1);
+#ifdef SCPDYN_ELEMENT_LANES
+          if constexpr (T == ElementType::Hex8 && !Axi)
+          {
+            for (Index first = chunkBegin(grp, chunks, c); first < end; first += kElementLanes)
+              k.pack(first, int(end - first < kElementLanes ? end - first : kElementLanes), local_min);
+            return;
+          }
+#endif
+          for (Index e = chunkBegin(grp, chunks, c); e < end; ++e)
+            k.one(e, local_min);
+        },
+        Kokkos::Min<Real>(dt_min));
+    return dt_min;
+  }
 #ifdef SCPDYN_ELEMENT_LANES
   if constexpr (T == ElementType::Hex8 && !Axi)
   {
@@ -136,19 +159,72 @@ Real computeElementForces(const std::vector<ElementGroup> &groups, const Element
   return dt_min;
 }
 
+NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
+                            Index num_nodes, int chunks)
+{
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), elems.conn);
+  // the chunk (over all groups) of each node's elements; -2 once two chunks touch it
+  std::vector<int> chunk_of(static_cast<size_t>(num_nodes), -1);
+  int chunk = 0;
+  for (const auto &g : groups)
+    for (int c = 0; c < chunks; ++c, ++chunk)
+      for (Index e = chunkBegin(g, chunks, c); e < chunkBegin(g, chunks, c + 1); ++e)
+        for (int a = 0; a < kMaxElementNodes && conn(e, a) >= 0; ++a)
+        {
+          int &owner = chunk_of[size_t(conn(e, a))];
+          owner = owner == -1 || owner == chunk ? chunk : -2;
+        }
+  NodeCorners nc;
+  nc.chunks = chunks;
+  nc.shared_corners = DeviceView<std::uint8_t *>("shared_corners", size_t(elems.count));
+  auto h_mask = Kokkos::create_mirror_view(nc.shared_corners);
+  std::vector<std::vector<Index>> lists(static_cast<size_t>(num_nodes));
+  for (Index e = 0; e < elems.count; ++e)
+  {
+    h_mask(e) = 0;
+    for (int a = 0; a < kMaxElementNodes && conn(e, a) >= 0; ++a)
+      if (chunk_of[size_t(conn(e, a))] == -2)
+      {
+        h_mask(e) = std::uint8_t(h_mask(e) | 1u << a);
+        lists[size_t(conn(e, a))].push_back(e * kMaxElementNodes + a); // ascending
+      }
+  }
+  std::vector<Index> shared, offsets{0}, flat;
+  for (Index n = 0; n < num_nodes; ++n)
+    if (!lists[size_t(n)].empty())
+    {
+      shared.push_back(n);
+      flat.insert(flat.end(), lists[size_t(n)].begin(), lists[size_t(n)].end());
+      offsets.push_back(Index(flat.size()));
+    }
+  auto toDevice = [](const std::vector<Index> &v, const char *label) {
+    IndexView d(std::string(label), v.size());
+    Kokkos::deep_copy(d, Kokkos::View<const Index *, HostSpace, Kokkos::MemoryUnmanaged>(v.data(), v.size()));
+    return d;
+  };
+  nc.shared_nodes = toDevice(shared, "shared_nodes");
+  nc.offsets = toDevice(offsets, "corner_offsets");
+  nc.corners = toDevice(flat, "corners");
+  Kokkos::deep_copy(nc.shared_corners, h_mask);
+  nc.corner_force = DeviceView<Real * [kMaxElementNodes][3]>("corner_force", size_t(elems.count));
+  return nc;
+}
+
 void gatherCornerForces(const NodeFields &nodes, const NodeCorners &corners)
 {
+  auto shared = corners.shared_nodes;
   auto offsets = corners.offsets;
   auto list = corners.corners;
   auto cf = corners.corner_force;
   auto f = nodes.f_int;
   Kokkos::parallel_for(
-      "gatherCorners", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
-      KOKKOS_LAMBDA(const Index n) {
+      "gatherCorners", Kokkos::RangePolicy<ExecSpace>(0, Index(shared.extent(0))),
+      KOKKOS_LAMBDA(const Index s_n) {
         // corner e * 8 + a is the 3 reals at 3 * corner of the (LayoutRight) corner array
+        const Index n = shared(s_n);
         const Real *cf0 = cf.data();
         Real s[3] = {0, 0, 0};
-        for (Index k = offsets(n); k < offsets(n + 1); ++k)
+        for (Index k = offsets(s_n); k < offsets(s_n + 1); ++k)
         {
           const Real *c = cf0 + 3 * size_t(list(k));
           for (int i = 0; i < 3; ++i)

@@ -5,6 +5,7 @@
 /// forces scattered to the nodes, and the element's stable time step.
 #include "core/Fields.hpp"
 #include "element/Hourglass.hpp"
+#include "element/Lanes.hpp"
 
 namespace scpdyn
 {
@@ -19,18 +20,35 @@ struct ElementControls
   Real hourglass_coefficient = 0.05;
   Real q_linear = 0.06;
   Real q_quadratic = 1.5;
-  bool gather = false; ///< write corner forces (deterministic) instead of atomic scatter
+  bool gather = false; ///< chunked, deterministic assembly (NodeCorners) instead of atomics
 };
 
-/// \brief Run the element solvers of all groups; forces go to nodes.f_int (atomic) or to
-/// corners.corner_force (gather; then call gatherCornerForces). Returns the smallest stable
+/// \brief First element of chunk k of the `chunks` chunks of group g (k = chunks: its end).
+/// Chunks are whole packs of kElementLanes hexes (whole elements for other types), so each
+/// thread's packs are those of the one-thread loop.
+KOKKOS_INLINE_FUNCTION Index chunkBegin(const ElementGroup &g, int chunks, int k)
+{
+  const Index unit = g.type == ElementType::Hex8 ? kElementLanes : 1;
+  const Index units = (g.end - g.begin + unit - 1) / unit;
+  const Index first = g.begin + Index(static_cast<long long>(units) * k / chunks) * unit;
+  return first < g.end ? first : g.end;
+}
+
+/// \brief Run the element solvers of all groups; forces go to nodes.f_int (atomic, or plain
+/// adds with one thread), or with ctl.gather to f_int and to corners.corner_force for shared
+/// nodes (then call gatherCornerForces). Returns the smallest stable
 /// element time step h / c before the Courant factor; a negative value
 /// -(e+1) reports an inverted element e.
 Real computeElementForces(const std::vector<ElementGroup> &groups, const ElementControls &ctl,
                           const NodeFields &nodes, const ElementFields &elems,
                           const DeviceView<MaterialParams *> &materials, const NodeCorners &corners);
 
-/// \brief f_int(n) = sum of the corner forces of node n, in a fixed order.
+/// \brief The chunks of the deterministic assembly (NodeCorners) for `chunks` threads: which
+/// nodes two chunks share, their corners, and the corner force array.
+NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
+                            Index num_nodes, int chunks);
+
+/// \brief f_int(n) = sum of the corner forces of each shared node n, in ascending corner order.
 void gatherCornerForces(const NodeFields &nodes, const NodeCorners &corners);
 
 /// \brief Stable element time step of the initial state (no strain rate), before the

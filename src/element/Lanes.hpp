@@ -14,14 +14,19 @@
 #include <cfloat>
 #include <cstdint>
 #include <cstring>
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+#include <immintrin.h>
+#endif
 
 namespace scpdyn
 {
 
 #if defined(__GNUC__) && !defined(KOKKOS_ENABLE_CUDA) && !defined(KOKKOS_ENABLE_HIP) &&          \
     !defined(KOKKOS_ENABLE_SYCL) && !defined(KOKKOS_ENABLE_OPENMPTARGET)
-#if defined(__AVX__)
-constexpr int kElementLanes = 4; ///< AVX/AVX-512 (SCPDYN_NATIVE): 4 hexes a pack (8 spill)
+#if defined(__AVX512F__)
+constexpr int kElementLanes = 8; ///< AVX-512 (SCPDYN_NATIVE): 8 hexes a pack (perf/README #14)
+#elif defined(__AVX__)
+constexpr int kElementLanes = 4; ///< AVX2: 4 hexes a pack
 #else
 constexpr int kElementLanes = 2; ///< x86-64 baseline: SSE2, 2 doubles a register
 #endif
@@ -194,6 +199,76 @@ inline LanePack loadPack(const Real *p)
 
 /// \brief a to kElementLanes consecutive Reals at p (no alignment needed): one vector store.
 inline void storePack(Real *p, const LanePack &a) { __builtin_memcpy(p, &a, sizeof a); }
+
+/// \brief The 3-vectors p[3 n[l] .. 3 n[l] + 2] of the lanes l (a nodal x or v, LayoutRight) as
+/// three packs, one per component.
+inline void loadTriples(const Real *p, const Index n[kElementLanes], LanePack out[3])
+{
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  static_assert(kElementLanes == 8, "the AVX-512 transpose is for packs of 8");
+  // One masked 256-bit load a lane (the mask keeps it inside the array), then an 8 x 3
+  // transpose in registers. What GCC makes of lane inserts here is 48 vgatherqpd a pack,
+  // about 14 cycles each on this host (perf/README.md, change 16).
+  typedef Real Quad __attribute__((vector_size(4 * sizeof(Real))));
+  Quad t[8];
+  for (int l = 0; l < 8; ++l)
+    t[l] = Quad(_mm256_maskz_loadu_pd(0x7, p + 3 * std::size_t(n[l])));
+  const LanePack t01 = __builtin_shufflevector(t[0], t[1], 0, 1, 2, 3, 4, 5, 6, 7);
+  const LanePack t23 = __builtin_shufflevector(t[2], t[3], 0, 1, 2, 3, 4, 5, 6, 7);
+  const LanePack t45 = __builtin_shufflevector(t[4], t[5], 0, 1, 2, 3, 4, 5, 6, 7);
+  const LanePack t67 = __builtin_shufflevector(t[6], t[7], 0, 1, 2, 3, 4, 5, 6, 7);
+  // x0 x2 z0 z2 x1 x3 z1 z3 and y0 y2 0 0 y1 y3 0 0, then the same for lanes 4-7
+  const LanePack xz03 = __builtin_shufflevector(t01, t23, 0, 8, 2, 10, 4, 12, 6, 14);
+  const LanePack y03 = __builtin_shufflevector(t01, t23, 1, 9, 3, 11, 5, 13, 7, 15);
+  const LanePack xz47 = __builtin_shufflevector(t45, t67, 0, 8, 2, 10, 4, 12, 6, 14);
+  const LanePack y47 = __builtin_shufflevector(t45, t67, 1, 9, 3, 11, 5, 13, 7, 15);
+  out[0] = __builtin_shufflevector(xz03, xz47, 0, 4, 1, 5, 8, 12, 9, 13);
+  out[1] = __builtin_shufflevector(y03, y47, 0, 4, 1, 5, 8, 12, 9, 13);
+  out[2] = __builtin_shufflevector(xz03, xz47, 2, 6, 3, 7, 10, 14, 11, 15);
+#else
+  for (int l = 0; l < kElementLanes; ++l)
+    for (int i = 0; i < 3; ++i)
+      out[i][l] = p[3 * std::size_t(n[l]) + std::size_t(i)];
+#endif
+}
+
+/// \brief Adds the N nodal 3-vectors f[a] of every lane l to p[3 n[a][l] ..], lane after lane
+/// and node after node: the order of the scalar element loop, so a node two lanes share sums
+/// its contributions in element order (what the corner gather does too).
+template <int N>
+inline void addTriples(Real *p, const Index n[N][kElementLanes], const LanePack f[N][3])
+{
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  // (x, y) as one 128-bit add and z as a scalar, from a transposed copy: each store has the
+  // size and address of a later lane's load of the same node, so it forwards
+  typedef Real Pair __attribute__((vector_size(2 * sizeof(Real))));
+  alignas(64) Real xy[N][2][8], z[N][8];
+  for (int a = 0; a < N; ++a)
+  {
+    const LanePack even = __builtin_shufflevector(f[a][0], f[a][1], 0, 8, 2, 10, 4, 12, 6, 14);
+    const LanePack odd = __builtin_shufflevector(f[a][0], f[a][1], 1, 9, 3, 11, 5, 13, 7, 15);
+    storePack(xy[a][0], even); // x0 y0 x2 y2 x4 y4 x6 y6
+    storePack(xy[a][1], odd);  // x1 y1 x3 y3 ...
+    storePack(z[a], f[a][2]);
+  }
+  for (int l = 0; l < 8; ++l)
+    for (int a = 0; a < N; ++a)
+    {
+      Real *q = p + 3 * std::size_t(n[a][l]);
+      Pair sum, add;
+      std::memcpy(&sum, q, sizeof sum);
+      std::memcpy(&add, &xy[a][l & 1][2 * (l >> 1)], sizeof add);
+      sum += add;
+      std::memcpy(q, &sum, sizeof sum);
+      q[2] += z[a][l];
+    }
+#else
+  for (int l = 0; l < kElementLanes; ++l)
+    for (int a = 0; a < N; ++a)
+      for (int i = 0; i < 3; ++i)
+        p[3 * std::size_t(n[a][l]) + std::size_t(i)] += f[a][i][l];
+#endif
+}
 #endif
 
 } // namespace scpdyn

@@ -1,0 +1,161 @@
+// The deterministic assembly (numerics.scatter gather): step 6 in C chunks, plain adds for the
+// nodes of one chunk, corner stores + gather for the nodes two chunks share. The forces and
+// the element state must be the same bits for every chunk count, C = 1 being the plain
+// one-thread loop; and the shared nodes must be exactly those two chunks touch.
+#include "driver/Solver.hpp"
+#include "element/InternalForce.hpp"
+#include "input/Deck.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <type_traits>
+#include <vector>
+
+namespace scpdyn
+{
+namespace
+{
+
+// Two hex parts whose element counts are not multiples of a pack (tail packs) and a tet part
+// (a second element group), different materials, moving against each other.
+const char *kDeck = R"(title: chunked assembly
+dimension: 3
+time: {end: 1.0, courant: 0.5}
+numerics: {scatter: gather}
+materials:
+  - {name: steel, model: elastic, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.3}
+  - {name: soft, model: elastic_plastic, density: 2700, youngs_modulus: 70.0e9, poisson_ratio: 0.33,
+     yield_stress: 1.0e6, hardening_modulus: 1.0e8}
+parts:
+  - name: a
+    material: steel
+    mesh: {type: block, element: hex8, elements: [9, 5, 3], size: [0.9, 0.5, 0.3]}
+    initial_velocity: [-50.0, 20.0, 0.0]
+  - name: b
+    material: soft
+    mesh: {type: block, element: hex8, elements: [4, 3, 5], size: [0.4, 0.3, 0.5], origin: [1, 0, 0]}
+    initial_velocity: [30.0, 0.0, -40.0]
+  - name: c
+    material: steel
+    mesh: {type: block, element: tet4, elements: [3, 2, 2], size: [0.3, 0.2, 0.2], origin: [0, 1, 0]}
+    initial_velocity: [0.0, -60.0, 10.0]
+node_sets:
+  - {name: wall, box: {min: [0, 0, 0], max: [0, 0.5, 0.3]}}
+boundary_conditions:
+  - {type: velocity, node_set: wall, component: x, value: 0.0}
+)";
+
+struct StepResult
+{
+  std::vector<Real> f_int, stress, energy, hourglass;
+};
+
+StepResult runStep(const Solver &s, const ElementControls &ctl, const NodeCorners &corners,
+                   const DeviceView<MaterialParams *> &materials)
+{
+  const ElementFields &el = s.elements();
+  const NodeFields &nodes = s.nodes();
+  // the step changes the element state: run it on a copy of every state View
+  auto copyOf = [](const auto &src) {
+    std::decay_t<decltype(src)> dst(src.label() + "_copy", src.extent(0));
+    Kokkos::deep_copy(dst, src);
+    return dst;
+  };
+  ElementFields copy = el;
+  copy.stress = copyOf(el.stress);
+  copy.energy = copyOf(el.energy);
+  copy.plastic_strain = copyOf(el.plastic_strain);
+  copy.volume = copyOf(el.volume);
+  copy.q = copyOf(el.q);
+  copy.sound_speed = copyOf(el.sound_speed);
+  copy.hourglass_energy = copyOf(el.hourglass_energy);
+  copy.history = copyOf(el.history);
+  copy.hourglass = copyOf(el.hourglass);
+  NodeFields n = nodes;
+  n.f_int = VectorView("f_int", size_t(nodes.count));
+  computeElementForces(s.groups(), ctl, n, copy, materials, corners);
+  gatherCornerForces(n, corners);
+  Kokkos::fence();
+  StepResult r;
+  auto f = Kokkos::create_mirror_view_and_copy(HostSpace(), n.f_int);
+  auto st = Kokkos::create_mirror_view_and_copy(HostSpace(), copy.stress);
+  auto e = Kokkos::create_mirror_view_and_copy(HostSpace(), copy.energy);
+  auto hg = Kokkos::create_mirror_view_and_copy(HostSpace(), copy.hourglass);
+  for (Index k = 0; k < nodes.count; ++k)
+    for (int i = 0; i < 3; ++i)
+      r.f_int.push_back(f(k, i));
+  for (Index k = 0; k < el.count; ++k)
+  {
+    for (int j = 0; j < 6; ++j)
+      r.stress.push_back(st(k, j));
+    r.energy.push_back(e(k));
+    for (int j = 0; j < kHourglassSize; ++j)
+      r.hourglass.push_back(hg(k, j));
+  }
+  return r;
+}
+
+TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksTouch)
+{
+  Solver s(parseDeckString(kDeck, "chunked.yaml"));
+  for (int k = 0; k < 12; ++k) // stress, hourglass resistances and plastic flow in the parts
+    s.cycle();
+  const Deck &d = s.deck();
+  ElementControls ctl;
+  ctl.dt = s.dt();
+  ctl.half_time = s.time() + 0.5 * s.dt();
+  ctl.hourglass_coefficient = d.hourglass_coefficient;
+  ctl.q_linear = d.bulk_viscosity_linear;
+  ctl.q_quadratic = d.bulk_viscosity_quadratic;
+  ctl.gather = true;
+  DeviceView<MaterialParams *> materials("materials", s.materialParams().size());
+  auto h_mat = Kokkos::create_mirror_view(materials);
+  for (size_t m = 0; m < s.materialParams().size(); ++m)
+    h_mat(m) = s.materialParams()[m];
+  Kokkos::deep_copy(materials, h_mat);
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), s.elements().conn);
+
+  StepResult one;
+  for (int chunks : {1, 2, 3, 7})
+  {
+    const NodeCorners corners =
+        makeNodeCorners(s.elements(), s.groups(), s.nodes().count, chunks);
+    // the shared nodes, found here by brute force: touched by elements of two chunks
+    std::vector<std::set<int>> touched(size_t(s.nodes().count));
+    int chunk = 0;
+    for (const auto &g : s.groups())
+      for (int c = 0; c < chunks; ++c, ++chunk)
+        for (Index e = chunkBegin(g, chunks, c); e < chunkBegin(g, chunks, c + 1); ++e)
+          for (int a = 0; a < kMaxElementNodes; ++a)
+            if (conn(e, a) >= 0)
+              touched[size_t(conn(e, a))].insert(chunk);
+    std::vector<Index> expected;
+    for (Index n = 0; n < s.nodes().count; ++n)
+      if (touched[size_t(n)].size() > 1)
+        expected.push_back(n);
+    auto shared = Kokkos::create_mirror_view_and_copy(HostSpace(), corners.shared_nodes);
+    ASSERT_EQ(std::vector<Index>(shared.data(), shared.data() + shared.extent(0)), expected)
+        << chunks << " chunks";
+    // three groups (hex, tet, and the chunks cut both): some nodes are shared from 2 chunks on
+    EXPECT_EQ(expected.empty(), chunks == 1) << chunks << " chunks";
+
+    const StepResult r = runStep(s, ctl, corners, materials);
+    if (chunks == 1)
+    {
+      one = r;
+      Real fmax = 0;
+      for (Real f : r.f_int)
+        fmax = std::max(fmax, std::abs(f));
+      ASSERT_GT(fmax, 0.0); // the step did produce forces
+      continue;
+    }
+    EXPECT_EQ(r.f_int, one.f_int) << chunks << " chunks";
+    EXPECT_EQ(r.stress, one.stress) << chunks << " chunks";
+    EXPECT_EQ(r.energy, one.energy) << chunks << " chunks";
+    EXPECT_EQ(r.hourglass, one.hourglass) << chunks << " chunks";
+  }
+}
+
+} // namespace
+} // namespace scpdyn
