@@ -58,10 +58,11 @@ struct NodeCorners
 {
   int chunks = 1;
   IndexView shared_nodes; ///< the shared nodes
-  IndexView offsets;      ///< shared nodes + 1: their corners (e * 8 + a) in ascending order
+  IndexView offsets;      ///< shared nodes + 1: their corners' slots, in ascending order
   IndexView corners;
   DeviceView<std::uint8_t *> shared_corners; ///< per element: bit a set if node a is shared
-  DeviceView<Real * [kMaxElementNodes][3]> corner_force; ///< per element corner [N]
+  IndexView corner_base;  ///< per element: the slot of its first shared corner (the rest follow)
+  VectorView corner_force; ///< per shared corner (slot) [N]
 };
 
 } // namespace scpdyn

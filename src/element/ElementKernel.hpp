@@ -31,8 +31,9 @@ struct ElementKernel
   VectorView x_n, v_n;
   AtomicVectorView f_atomic;
   VectorView f_plain;
-  DeviceView<Real * [kMaxElementNodes][3]> corner_force;
+  VectorView corner_force;
   DeviceView<std::uint8_t *> shared_corners;
+  IndexView corner_base;
   IndexView mat_id;
   RealView e_mass, e_volume, e_energy, e_eps, e_q, e_c, e_hg;
   SymTensorView e_stress;
@@ -95,11 +96,15 @@ struct ElementKernel
     if (scatter == Scatter::Corners)
     {
       const unsigned shared = shared_corners(e);
+      Index slot = corner_base(e);
       for (int a = 0; a < N; ++a)
       {
         if (shared >> a & 1u)
+        {
           for (int i = 0; i < 3; ++i)
-            corner_force(e, a, i) = force[a][i];
+            corner_force(slot, i) = force[a][i];
+          ++slot;
+        }
         else
         {
           const Index n = conn(e, a);

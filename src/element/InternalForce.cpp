@@ -26,6 +26,7 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
   k.f_plain = nodes.f_int;
   k.corner_force = corners.corner_force;
   k.shared_corners = corners.shared_corners;
+  k.corner_base = corners.corner_base;
   k.mat_id = el.material;
   k.e_mass = el.mass;
   k.e_volume = el.volume;
@@ -177,16 +178,22 @@ NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<Elemen
   NodeCorners nc;
   nc.chunks = chunks;
   nc.shared_corners = DeviceView<std::uint8_t *>("shared_corners", size_t(elems.count));
+  nc.corner_base = IndexView("corner_base", size_t(elems.count));
   auto h_mask = Kokkos::create_mirror_view(nc.shared_corners);
+  auto h_base = Kokkos::create_mirror_view(nc.corner_base);
+  // a slot per shared corner, in ascending (element, corner) order, so a node's slots ascend
+  // as its corners do
   std::vector<std::vector<Index>> lists(static_cast<size_t>(num_nodes));
+  Index slots = 0;
   for (Index e = 0; e < elems.count; ++e)
   {
     h_mask(e) = 0;
+    h_base(e) = slots;
     for (int a = 0; a < kMaxElementNodes && conn(e, a) >= 0; ++a)
       if (chunk_of[size_t(conn(e, a))] == -2)
       {
         h_mask(e) = std::uint8_t(h_mask(e) | 1u << a);
-        lists[size_t(conn(e, a))].push_back(e * kMaxElementNodes + a); // ascending
+        lists[size_t(conn(e, a))].push_back(slots++);
       }
   }
   std::vector<Index> shared, offsets{0}, flat;
@@ -206,7 +213,8 @@ NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<Elemen
   nc.offsets = toDevice(offsets, "corner_offsets");
   nc.corners = toDevice(flat, "corners");
   Kokkos::deep_copy(nc.shared_corners, h_mask);
-  nc.corner_force = DeviceView<Real * [kMaxElementNodes][3]>("corner_force", size_t(elems.count));
+  Kokkos::deep_copy(nc.corner_base, h_base);
+  nc.corner_force = VectorView("corner_force", size_t(slots));
   return nc;
 }
 
@@ -220,16 +228,11 @@ void gatherCornerForces(const NodeFields &nodes, const NodeCorners &corners)
   Kokkos::parallel_for(
       "gatherCorners", Kokkos::RangePolicy<ExecSpace>(0, Index(shared.extent(0))),
       KOKKOS_LAMBDA(const Index s_n) {
-        // corner e * 8 + a is the 3 reals at 3 * corner of the (LayoutRight) corner array
         const Index n = shared(s_n);
-        const Real *cf0 = cf.data();
         Real s[3] = {0, 0, 0};
         for (Index k = offsets(s_n); k < offsets(s_n + 1); ++k)
-        {
-          const Real *c = cf0 + 3 * size_t(list(k));
           for (int i = 0; i < 3; ++i)
-            s[i] += c[i];
-        }
+            s[i] += cf(list(k), i);
         for (int i = 0; i < 3; ++i)
           f(n, i) = s[i];
       });
