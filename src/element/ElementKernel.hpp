@@ -93,36 +93,7 @@ struct ElementKernel
   /// Element e's nodal forces to f_int (atomic or plain adds) or to its corner slots.
   KOKKOS_INLINE_FUNCTION void scatterForces(const Index e, const Real force[][3]) const
   {
-    if (scatter == Scatter::Corners)
-    {
-      const unsigned shared = shared_corners(e);
-      Index slot = corner_base(e);
-      for (int a = 0; a < N; ++a)
-      {
-        if (shared >> a & 1u)
-        {
-          for (int i = 0; i < 3; ++i)
-            corner_force(slot, i) = force[a][i];
-          ++slot;
-        }
-        else
-        {
-          const Index n = conn(e, a);
-          for (int i = 0; i < ElementTraits<T>::dim; ++i)
-            f_plain(n, i) += force[a][i];
-        }
-      }
-    }
-    else if (scatter == Scatter::Plain)
-    {
-      for (int a = 0; a < N; ++a)
-      {
-        const Index n = conn(e, a);
-        for (int i = 0; i < ElementTraits<T>::dim; ++i)
-          f_plain(n, i) += force[a][i];
-      }
-    }
-    else
+    if (scatter == Scatter::Atomic)
     {
       for (int a = 0; a < N; ++a)
       {
@@ -130,7 +101,24 @@ struct ElementKernel
         for (int i = 0; i < ElementTraits<T>::dim; ++i)
           f_atomic(n, i) += force[a][i];
       }
+      return;
     }
+    // plain adds, but the corners of shared nodes (chunked assembly) to their slots
+    const unsigned shared = scatter == Scatter::Corners ? unsigned(shared_corners(e)) : 0u;
+    Index slot = shared != 0 ? corner_base(e) : 0;
+    for (int a = 0; a < N; ++a)
+      if (shared >> a & 1u)
+      {
+        for (int i = 0; i < 3; ++i)
+          corner_force(slot, i) = force[a][i];
+        ++slot;
+      }
+      else
+      {
+        const Index n = conn(e, a);
+        for (int i = 0; i < ElementTraits<T>::dim; ++i)
+          f_plain(n, i) += force[a][i];
+      }
   }
 
   KOKKOS_INLINE_FUNCTION void one(const Index e, Real &local_min) const
@@ -152,6 +140,22 @@ struct ElementKernel
     ElementResult r;
     elementStep<T, Axi>(x, v, mat, ctl, s, r);
     finish(e, history ? s.history : nullptr, s, r, local_min);
+  }
+
+  /// Elements begin .. end - 1 in order, on the calling thread: packs of kElementLanes hexes,
+  /// else one element at a time.
+  KOKKOS_INLINE_FUNCTION void range(const Index begin, const Index end, Real &local_min) const
+  {
+#ifdef SCPDYN_ELEMENT_LANES
+    if constexpr (T == ElementType::Hex8 && !Axi)
+    {
+      for (Index first = begin; first < end; first += kElementLanes)
+        pack(first, int(end - first < kElementLanes ? end - first : kElementLanes), local_min);
+      return;
+    }
+#endif
+    for (Index e = begin; e < end; ++e)
+      one(e, local_min);
   }
 
 #ifdef SCPDYN_ELEMENT_LANES
@@ -311,30 +315,23 @@ struct ElementKernel
     elementForces<T, Axi>(x, v, ctl, k, c, s, r);
     if (count == W && storePackState(first, s, r, uses_history, hist))
     {
-      bool plain = scatter == Scatter::Plain;
+      unsigned shared = 0; // does the pack touch a shared node (chunked assembly)?
       if (scatter == Scatter::Corners)
-      {
-        unsigned shared = 0; // does the pack touch a shared node?
         for (int l = 0; l < W; ++l)
           shared |= shared_corners(first + l);
-        plain = shared == 0;
-      }
-      if (plain)
-      {
+      if (scatter != Scatter::Atomic && shared == 0)
         addTriples<N>(f_plain.data(), node, r.force);
+      else
         for (int l = 0; l < W; ++l)
-          local_min = r.stable_dt[l] < local_min ? r.stable_dt[l] : local_min;
-        return;
-      }
+        {
+          Real force[N][3];
+          for (int a = 0; a < N; ++a)
+            for (int i = 0; i < 3; ++i)
+              force[a][i] = r.force[a][i][l];
+          scatterForces(el[l], force);
+        }
       for (int l = 0; l < W; ++l)
-      {
-        Real force[N][3];
-        for (int a = 0; a < N; ++a)
-          for (int i = 0; i < 3; ++i)
-            force[a][i] = r.force[a][i][l];
-        scatterForces(el[l], force);
         local_min = r.stable_dt[l] < local_min ? r.stable_dt[l] : local_min;
-      }
       return;
     }
     for (int l = 0; l < count; ++l)

@@ -1,5 +1,6 @@
 #include "element/InternalForce.hpp"
 
+#include "core/HostCopy.hpp"
 #include "element/ElementKernel.hpp"
 
 namespace scpdyn
@@ -51,17 +52,7 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
     Kokkos::parallel_reduce(
         "elementChunks", Kokkos::RangePolicy<ExecSpace>(0, chunks),
         KOKKOS_LAMBDA(const int c, Real &local_min) {
-          const Index end = chunkBegin(grp, chunks, c + 1);
-#ifdef SCPDYN_ELEMENT_LANES
-          if constexpr (T == ElementType::Hex8 && !Axi)
-          {
-            for (Index first = chunkBegin(grp, chunks, c); first < end; first += kElementLanes)
-              k.pack(first, int(end - first < kElementLanes ? end - first : kElementLanes), local_min);
-            return;
-          }
-#endif
-          for (Index e = chunkBegin(grp, chunks, c); e < end; ++e)
-            k.one(e, local_min);
+          k.range(chunkBegin(grp, chunks, c), chunkBegin(grp, chunks, c + 1), local_min);
         },
         Kokkos::Min<Real>(dt_min));
     return dt_min;
@@ -75,7 +66,7 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
         "hex8Forces", Kokkos::RangePolicy<ExecSpace>(0, (end - begin + W - 1) / W),
         KOKKOS_LAMBDA(const Index p, Real &local_min) {
           const Index first = begin + p * W;
-          k.pack(first, int(end - first < W ? end - first : W), local_min);
+          k.range(first, end - first < W ? end : first + W, local_min);
         },
         Kokkos::Min<Real>(dt_min));
     return dt_min;
@@ -175,24 +166,19 @@ NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<Elemen
           int &owner = chunk_of[size_t(conn(e, a))];
           owner = owner == -1 || owner == chunk ? chunk : -2;
         }
-  NodeCorners nc;
-  nc.chunks = chunks;
-  nc.shared_corners = DeviceView<std::uint8_t *>("shared_corners", size_t(elems.count));
-  nc.corner_base = IndexView("corner_base", size_t(elems.count));
-  auto h_mask = Kokkos::create_mirror_view(nc.shared_corners);
-  auto h_base = Kokkos::create_mirror_view(nc.corner_base);
   // a slot per shared corner, in ascending (element, corner) order, so a node's slots ascend
   // as its corners do
+  std::vector<std::uint8_t> mask(static_cast<size_t>(elems.count), 0);
+  std::vector<Index> base(static_cast<size_t>(elems.count));
   std::vector<std::vector<Index>> lists(static_cast<size_t>(num_nodes));
   Index slots = 0;
   for (Index e = 0; e < elems.count; ++e)
   {
-    h_mask(e) = 0;
-    h_base(e) = slots;
+    base[size_t(e)] = slots;
     for (int a = 0; a < kMaxElementNodes && conn(e, a) >= 0; ++a)
       if (chunk_of[size_t(conn(e, a))] == -2)
       {
-        h_mask(e) = std::uint8_t(h_mask(e) | 1u << a);
+        mask[size_t(e)] = std::uint8_t(mask[size_t(e)] | 1u << a);
         lists[size_t(conn(e, a))].push_back(slots++);
       }
   }
@@ -204,16 +190,13 @@ NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<Elemen
       flat.insert(flat.end(), lists[size_t(n)].begin(), lists[size_t(n)].end());
       offsets.push_back(Index(flat.size()));
     }
-  auto toDevice = [](const std::vector<Index> &v, const char *label) {
-    IndexView d(std::string(label), v.size());
-    Kokkos::deep_copy(d, Kokkos::View<const Index *, HostSpace, Kokkos::MemoryUnmanaged>(v.data(), v.size()));
-    return d;
-  };
+  NodeCorners nc;
+  nc.chunks = chunks;
   nc.shared_nodes = toDevice(shared, "shared_nodes");
   nc.offsets = toDevice(offsets, "corner_offsets");
   nc.corners = toDevice(flat, "corners");
-  Kokkos::deep_copy(nc.shared_corners, h_mask);
-  Kokkos::deep_copy(nc.corner_base, h_base);
+  nc.shared_corners = toDevice(mask, "shared_corners");
+  nc.corner_base = toDevice(base, "corner_base");
   nc.corner_force = VectorView("corner_force", size_t(slots));
   return nc;
 }

@@ -208,7 +208,7 @@ inline void loadTriples(const Real *p, const Index n[kElementLanes], LanePack ou
   static_assert(kElementLanes == 8, "the AVX-512 transpose is for packs of 8");
   // One masked 256-bit load a lane (the mask keeps it inside the array), then an 8 x 3
   // transpose in registers. What GCC makes of lane inserts here is 48 vgatherqpd a pack,
-  // about 14 cycles each on this host (perf/README.md, change 16).
+  // about 14 cycles each on this host (perf/README.md, change 15).
   typedef Real Quad __attribute__((vector_size(4 * sizeof(Real))));
   Quad t[8];
   for (int l = 0; l < 8; ++l)
