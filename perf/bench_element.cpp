@@ -86,21 +86,21 @@ void BM_HexKernelGather(benchmark::State &state)
   setCounters(state, k.solver.elements().count);
 }
 
-/// Step 5 (zero f_int, f_ext = m g), per element of the box for comparison.
-void BM_ZeroForces(benchmark::State &state)
+/// Step 5 (zero f_int, and f_ext = m g with loads), per element of the box for comparison.
+void BM_ZeroForces(benchmark::State &state, bool loads)
 {
   KernelSetup &k = setup();
   const Real g[3] = {0, 0, 0};
   for (auto _ : state)
   {
-    zeroForces(k.solver.nodes(), g);
+    zeroForces(k.solver.nodes(), g, loads);
     Kokkos::fence();
   }
   setCounters(state, k.solver.elements().count);
 }
 
 /// Step 12 (velocities, positions, energy sums) with zero forces: the nodes stay put.
-void BM_UpdateNodes(benchmark::State &state)
+void BM_UpdateNodes(benchmark::State &state, bool loads)
 {
   KernelSetup &k = setup();
   NodeFields nodes = k.solver.nodes();
@@ -117,7 +117,7 @@ void BM_UpdateNodes(benchmark::State &state)
   const Real dt = k.solver.dt();
   for (auto _ : state)
   {
-    const NodeSums s = updateNodes(mine, bc, dt, 3);
+    const NodeSums s = updateNodes(mine, bc, dt, 3, IndexView(), loads);
     benchmark::DoNotOptimize(s.kinetic);
   }
   setCounters(state, k.solver.elements().count);
@@ -127,8 +127,11 @@ BENCHMARK(BM_HexKernelAtomic)->Apply(configure);
 BENCHMARK(BM_HexKernelCorners)->Apply(configure);
 BENCHMARK(BM_GatherCornerForces)->Apply(configure);
 BENCHMARK(BM_HexKernelGather)->Apply(configure);
-BENCHMARK(BM_ZeroForces)->Apply(configure);
-BENCHMARK(BM_UpdateNodes)->Apply(configure);
+// with f_ext (gravity, nodal forces or pressure in the deck) and without (hasExternalLoads())
+BENCHMARK_CAPTURE(BM_ZeroForces, Loads, true)->Apply(configure);
+BENCHMARK_CAPTURE(BM_ZeroForces, NoLoads, false)->Apply(configure);
+BENCHMARK_CAPTURE(BM_UpdateNodes, Loads, true)->Apply(configure);
+BENCHMARK_CAPTURE(BM_UpdateNodes, NoLoads, false)->Apply(configure);
 
 } // namespace
 

@@ -3,9 +3,25 @@
 namespace scpdyn
 {
 
-void zeroForces(const NodeFields &nodes, const Real gravity[3])
+bool hasExternalLoads(const BoundaryConditions &bc, const Real gravity[3])
+{
+  return gravity[0] != 0 || gravity[1] != 0 || gravity[2] != 0 || !bc.force_value.empty() ||
+         !bc.pressure_value.empty();
+}
+
+void zeroForces(const NodeFields &nodes, const Real gravity[3], const bool loads)
 {
   auto f_int = nodes.f_int;
+  if (!loads)
+  {
+    Kokkos::parallel_for(
+        "zeroForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
+        KOKKOS_LAMBDA(const Index n) {
+          for (int i = 0; i < 3; ++i)
+            f_int(n, i) = 0;
+        });
+    return;
+  }
   auto f_ext = nodes.f_ext;
   auto mass = nodes.mass;
   const Real g0 = gravity[0], g1 = gravity[1], g2 = gravity[2];
@@ -21,8 +37,25 @@ void zeroForces(const NodeFields &nodes, const Real gravity[3])
       });
 }
 
-NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt, int dim,
-                     const IndexView &owned)
+namespace
+{
+
+/// Nodes per work item of step 12 on the host. The sums of a chunk run in local variables,
+/// which no store to x, v or the impulse can alias: with the sums in the reduction's own
+/// NodeSums, every one of their 9 additions a node went through memory after each such store
+/// (a chain of store-to-load forwards, ~40 % of the step). The additions keep their order.
+#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
+constexpr Index kNodeChunk = 1;
+#else
+constexpr Index kNodeChunk = 256;
+#endif
+
+/// updateNodes() in dimension Dim; without Loads, f_ext is +0 (not read) and a node component
+/// without a velocity constraint has impulse 0 and previous impulse 0, so its external work
+/// term (+-0) is skipped: adding +-0 to the sum, which starts at +0, never changes its bits.
+template <int Dim, bool Loads>
+NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt,
+                        const IndexView &owned)
 {
   const bool all = owned.extent(0) == 0;
   auto x = nodes.x;
@@ -34,42 +67,83 @@ NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Rea
   auto vbc = bcs.velocity_current;
   auto prev_impulse = nodes.external_impulse;
   const Real half_dt = 0.5 * dt;
+  const Index count = nodes.count;
   NodeSums sums;
   Kokkos::parallel_reduce(
-      "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
-      KOKKOS_LAMBDA(const Index n, NodeSums &s) {
-        const Real m = mass(n);
-        for (int i = 0; i < dim; ++i)
+      "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, (count + kNodeChunk - 1) / kNodeChunk),
+      KOKKOS_LAMBDA(const Index chunk, NodeSums &s) {
+        Real external_work = s.external_work, kinetic = s.kinetic, kinetic_mid = s.kinetic_mid;
+        Real momentum[Dim];
+        for (int i = 0; i < Dim; ++i)
+          momentum[i] = s.momentum[i];
+        const Index end = count - chunk * kNodeChunk < kNodeChunk ? count : (chunk + 1) * kNodeChunk;
+        for (Index n = chunk * kNodeChunk; n < end; ++n)
         {
-          const Real v_old = v(n, i);
-          const Real f = f_int(n, i) + f_ext(n, i);
-          Real v_new = v_old + dt * f / m;
-          Real work_force = f_ext(n, i);
-          const int k = bc(n, i);
-          if (k >= 0)
+          const Real m = mass(n);
+          const bool counted = all || owned(n);
+          for (int i = 0; i < Dim; ++i)
           {
-            v_new = vbc(k);
-            // the constraint's reaction does the work that the velocity change needs
-            work_force += m * (v_new - v_old) / dt - f;
+            const Real v_old = v(n, i);
+            const Real fe = Loads ? f_ext(n, i) : Real(0);
+            const Real f = f_int(n, i) + fe;
+            Real v_new = v_old + dt * f / m;
+            Real work_force = fe;
+            const int k = bc(n, i);
+            if (k >= 0)
+            {
+              v_new = vbc(k);
+              // the constraint's reaction does the work that the velocity change needs
+              work_force += m * (v_new - v_old) / dt - f;
+            }
+            // Work on the leapfrog's own terms: 1/2 m v^n.v^{n+1} changes from n-1/2 to n+1/2
+            // by 1/2 v^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}); booking external work the same
+            // way (the element energy does, by its trapezoidal stress) closes the balance to
+            // O(dt^2).
+            if (Loads || k >= 0)
+            {
+              const Real impulse = work_force * dt;
+              if (counted)
+                external_work += 0.5 * v_old * (impulse + prev_impulse(n, i));
+              prev_impulse(n, i) = impulse;
+            }
+            if (counted)
+            {
+              kinetic += 0.5 * m * v_new * v_new;
+              kinetic_mid += 0.5 * m * v_old * v_new;
+              momentum[i] += m * v_new;
+            }
+            x(n, i) += half_dt * (v_old + v_new);
+            v(n, i) = v_new;
           }
-          // Work on the leapfrog's own terms: 1/2 m v^n.v^{n+1} changes from n-1/2 to n+1/2 by
-          // 1/2 v^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}); booking external work the same way
-          // (the element energy does, by its trapezoidal stress) closes the balance to O(dt^2).
-          const Real impulse = work_force * dt;
-          if (all || owned(n))
-          {
-            s.external_work += 0.5 * v_old * (impulse + prev_impulse(n, i));
-            s.kinetic += 0.5 * m * v_new * v_new;
-            s.kinetic_mid += 0.5 * m * v_old * v_new;
-            s.momentum[i] += m * v_new;
-          }
-          prev_impulse(n, i) = impulse;
-          x(n, i) += half_dt * (v_old + v_new);
-          v(n, i) = v_new;
         }
+        s.external_work = external_work;
+        s.kinetic = kinetic;
+        s.kinetic_mid = kinetic_mid;
+        for (int i = 0; i < Dim; ++i)
+          s.momentum[i] = momentum[i];
       },
       Kokkos::Sum<NodeSums>(sums));
   return sums;
+}
+
+template <int Dim>
+NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt,
+                        const IndexView &owned, bool loads)
+{
+  return loads ? integrateNodes<Dim, true>(nodes, bcs, dt, owned)
+               : integrateNodes<Dim, false>(nodes, bcs, dt, owned);
+}
+
+} // namespace
+
+NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt, int dim,
+                     const IndexView &owned, const bool loads)
+{
+  if (dim == 1)
+    return integrateNodes<1>(nodes, bcs, dt, owned, loads);
+  if (dim == 2)
+    return integrateNodes<2>(nodes, bcs, dt, owned, loads);
+  return integrateNodes<3>(nodes, bcs, dt, owned, loads);
 }
 
 NodeSums nodeSums(const NodeFields &nodes, const IndexView &owned)

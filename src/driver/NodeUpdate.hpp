@@ -38,15 +38,22 @@ struct NodeSums
   }
 };
 
-/// \brief Step 5: f_int = 0, f_ext = m g.
-void zeroForces(const NodeFields &nodes, const Real gravity[3]);
+/// \brief True if the deck puts loads into f_ext: gravity, nodal forces or face pressure (the
+/// same on every rank). Without them f_ext keeps its initial zero, and steps 5 and 12 neither
+/// write nor read it, nor the impulse of a node without a velocity constraint: 128 of the ~316
+/// bytes a node moves in the two steps (perf/README.md, change 17).
+bool hasExternalLoads(const BoundaryConditions &bc, const Real gravity[3]);
+
+/// \brief Step 5: f_int = 0, and f_ext = m g if `loads` (hasExternalLoads()).
+void zeroForces(const NodeFields &nodes, const Real gravity[3], bool loads = true);
 
 /// \brief Step 12: integrate velocities and positions; returns kinetic energies, external
 /// work and momentum. With `owned` (per node, 1 = this rank owns it) the sums cover the owned
 /// nodes only, so a node shared between ranks is counted once over the ranks; every node
-/// is updated either way.
+/// is updated either way. Without `loads` (hasExternalLoads()) f_ext is taken as zero unread,
+/// with the same bits.
 NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bc, Real dt, int dim,
-                     const IndexView &owned = IndexView());
+                     const IndexView &owned = IndexView(), bool loads = true);
 
 /// \brief Kinetic energy and momentum of the current velocities (owned nodes only when
 /// `owned` is given).

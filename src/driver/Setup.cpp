@@ -95,6 +95,7 @@ Solver::Solver(const Deck &deck, MPI_Comm comm) : _deck(deck), _comm(comm)
     finishDecomposition();
   setupSets();
   setupBoundaryConditions();
+  _external_loads = hasExternalLoads(_bc, _deck.gravity.data());
   setupContact();
   setupGauges();
   setupInitialState();

@@ -151,6 +151,7 @@ private:
   DeviceView<MaterialParams *> _materials;
   std::vector<MaterialParams> _materials_host;
   BoundaryConditions _bc;
+  bool _external_loads = true; ///< hasExternalLoads(): steps 5 and 12 handle f_ext
   ElementControls _controls;
   std::vector<GaugeSlot> _gauges;
   /// joint gauges: the CPs within `radius` [m] (0: half the largest contact face) of the node

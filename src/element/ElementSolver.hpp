@@ -43,6 +43,8 @@ struct ElementKinematicsOf
 {
   R B[ElementTraits<T>::nodes][3];
   R measure, V, length;
+  R cube_root_V;   ///< hex8: V^(1/3), the viscosity length and (squared) the hourglass scale
+  R Lh[3][3];      ///< velocity gradient on x^{n+1/2}, sum_a v_a B_a [1/s]
   R D[6];          ///< rate of deformation on the midpoint configuration [1/s]
   R rho_old, rho_new;
   R q_new;         ///< this step's viscosity pressure [Pa]
@@ -121,6 +123,8 @@ KOKKOS_INLINE_FUNCTION void elementGeometry(const R x[][3], ElementKinematicsOf<
   k.V = k.measure;
   if constexpr (Axi)
     k.V = quad4RadialVolume(x);
+  if constexpr (T == ElementType::Hex8) // one cube root for q and the hourglass
+    k.cube_root_V = LaneOps<R>::cbrt(k.V);
 }
 
 /// \brief Phase 1b: velocity gradient on the midpoint configuration, rate of deformation,
@@ -134,7 +138,7 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
   constexpr int D = ElementTraits<T>::dim;
   using Ops = LaneOps<R>;
   const R zero = Ops::broadcast(0);
-  R Lh[3][3];
+  R(&Lh)[3][3] = k.Lh;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
       Lh[i][j] = zero;
@@ -169,13 +173,18 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
     k.q_new = zero;
     if (trD < 0)
     {
-      const R lq = D == 1 ? k.measure : D == 2 ? Ops::sqrt(k.measure) : Ops::cbrt(k.measure);
+      R lq;
+      if constexpr (T == ElementType::Hex8)
+        lq = k.cube_root_V;
+      else
+        lq = D == 1 ? k.measure : D == 2 ? Ops::sqrt(k.measure) : Ops::cbrt(k.measure);
       k.q_new = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
     }
   }
   else // lanes (hex8): the same expression in every lane, kept where compressed, 0 elsewhere
   {
-    const R lq = Ops::cbrt(k.measure);
+    static_assert(T == ElementType::Hex8, "lane packs are hex8");
+    const R lq = k.cube_root_V;
     const R q = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
     k.q_new = trD < 0 ? q : zero;
   }
@@ -224,21 +233,41 @@ KOKKOS_INLINE_FUNCTION void elementForces(const R x[][3], const R v[][3], const 
   const R sig[3][3] = {{s.stress[0] - q_new, s.stress[3], s.stress[5]},
                        {s.stress[3], s.stress[1] - q_new, s.stress[4]},
                        {s.stress[5], s.stress[4], s.stress[2] - q_new}};
-  const R zero = LaneOps<R>::broadcast(0);
-  for (int a = 0; a < N; ++a)
+  if constexpr (T == ElementType::Hex8)
   {
+    // the hourglass force's B-term joins the stress divergence: f_a = -(V sig - H) B_a - GQ_a
+    const R Vs = k.cube_root_V * k.cube_root_V; // hourglassAreaScale(), one cube root a step
+    R GQ[8][3], H[3][3];
+    r.hourglass_power = hex8HourglassResistances<R>(x, v, k.B, k.Lh, k.V, Vs, k.rho_new, c,
+                                                    ctl.hourglass, ctl.hourglass_coefficient,
+                                                    ctl.dt, s.hourglass, GQ, H);
+    R P[3][3];
     for (int i = 0; i < 3; ++i)
-    {
-      R fi = zero;
-      for (int j = 0; j < D; ++j)
-        fi -= sig[i][j] * k.B[a][j];
-      r.force[a][i] = i < D ? k.V * fi : zero;
-    }
-    if constexpr (Axi)
-      r.force[a][0] -= sig[2][2] * k.measure / N;
+      for (int j = 0; j < 3; ++j)
+        P[i][j] = k.V * sig[i][j] - H[i][j];
+    for (int a = 0; a < 8; ++a)
+      for (int i = 0; i < 3; ++i)
+        r.force[a][i] = -(P[i][0] * k.B[a][0] + P[i][1] * k.B[a][1] + P[i][2] * k.B[a][2]) - GQ[a][i];
   }
-  r.hourglass_power = hourglassForces<T, R>(x, v, k.B, k.V, k.rho_new, c, ctl.hourglass,
-                                            ctl.hourglass_coefficient, ctl.dt, s.hourglass, r.force);
+  else
+  {
+    const R zero = LaneOps<R>::broadcast(0);
+    for (int a = 0; a < N; ++a)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        R fi = zero;
+        for (int j = 0; j < D; ++j)
+          fi -= sig[i][j] * k.B[a][j];
+        r.force[a][i] = i < D ? k.V * fi : zero;
+      }
+      if constexpr (Axi)
+        r.force[a][0] -= sig[2][2] * k.measure / N;
+    }
+    // Vs = V: the quad's hourglassAreaScale() in 2D; tets and lines have no hourglass modes
+    r.hourglass_power = hourglassForces<T, R>(x, v, k.B, k.V, k.V, k.rho_new, c, ctl.hourglass,
+                                              ctl.hourglass_coefficient, ctl.dt, s.hourglass, r.force);
+  }
   r.q = q_new;
   s.q = q_new;
   // dt = h / c. The viscosity term of h / (Q + sqrt(Q^2 + c^2)) is left out on purpose: it

@@ -4,8 +4,10 @@
 /// Real (one element, what the unit tests and the other element types use) or LanePack (W
 /// hex8 elements at once, one per vector lane). Every lane does the scalar arithmetic in the
 /// scalar order, so a pack gives the bits of W scalar calls (IEEE +, -, *, / and sqrt are
-/// correctly rounded in vector registers too; no FMA contraction without -march flags, and
-/// SCPDYN_NATIVE adds -ffp-contract=off). The cube root is laneCbrt, vector arithmetic too.
+/// correctly rounded in vector registers too) where both are compiled alike: SCPDYN_NATIVE
+/// keeps -ffp-contract=off everywhere but in InternalForce.cpp, whose hexes all run as packs
+/// (chunks start on pack boundaries), so their bits do not depend on the thread count either.
+/// The cube root is laneCbrt, vector arithmetic too.
 ///
 /// The pack is a GCC/Clang vector type, host only: device builds (and other compilers) use
 /// one lane, i.e. the scalar path. LaneOps<R> is the small interface the templates need.
@@ -14,7 +16,7 @@
 #include <cfloat>
 #include <cstdint>
 #include <cstring>
-#if defined(__AVX512F__) && defined(__AVX512VL__)
+#if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
 
@@ -48,7 +50,9 @@ constexpr int kElementLanes = 1;
 //   (`bits/3 + 682·2^52` is 2^(e/3)·(1 + m/3) for x = 2^e (1 + m): within 6 %);
 // - two Halley steps y ← y (y³ + 2x)/(2y³ + x) (cubic: 6 % → 1e-4 → 1e-12);
 // - one Newton step y − (y³ − x)/(3y²) with the residual y³ − x formed almost exactly by
-//   Dekker's splitting (exact products without FMA, so -ffp-contract=off keeps the bits).
+//   Dekker's splitting (exact products without FMA: the accuracy figures above are for code
+//   compiled so, as in the tests; in the element step, compiled with FMA contraction, the
+//   last rounding may differ).
 // Arguments that are not positive normal numbers (0, negatives, subnormals, inf, NaN) take
 // kmath::cbrt lane by lane.
 namespace lane_cbrt
@@ -179,12 +183,22 @@ struct LaneOps<LanePack>
   }
   /// a > b ? a : b in every lane (NaN: b, as the scalar form)
   static inline LanePack max(const LanePack &a, const LanePack &b) { return a > b ? a : b; }
-  static inline LanePack sqrt(const LanePack &a) // sqrtpd: correctly rounded, as sqrtsd
+  /// vsqrtpd: correctly rounded, so the bits of sqrt lane by lane. A loop of kmath::sqrt
+  /// becomes one scalar vsqrtsd a lane, each behind its errno check.
+  static inline LanePack sqrt(const LanePack &a)
   {
+#if defined(__AVX512F__) // (the all-lanes mask: _mm512_sqrt_pd trips GCC 12's -Wuninitialized)
+    return LanePack(_mm512_mask_sqrt_pd(__m512d(a), __mmask8(0xFF), __m512d(a)));
+#elif defined(__AVX__)
+    return LanePack(_mm256_sqrt_pd(__m256d(a)));
+#elif defined(__SSE2__)
+    return LanePack(_mm_sqrt_pd(__m128d(a)));
+#else
     LanePack r;
     for (int l = 0; l < width; ++l)
       r[l] = kmath::sqrt(a[l]);
     return r;
+#endif
   }
   static inline LanePack cbrt(const LanePack &a) { return laneCbrt(a); }
 };

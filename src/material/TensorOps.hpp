@@ -58,17 +58,15 @@ template <class R>
 KOKKOS_INLINE_FUNCTION void hughesWingetRotation(const R w[3], Real dt, R Q[3][3])
 {
   // Cayley transform of the skew matrix A = W dt/2 with axial vector a:
-  // Q = I + 2/(1+|a|^2) (A + A^2)
-  const R a0 = 0.5 * dt * w[0], a1 = 0.5 * dt * w[1], a2 = 0.5 * dt * w[2];
+  // Q = I + 2/(1+|a|^2) (A + A^2), and A^2 = a a^T - |a|^2 I (no products with A's zeros)
+  const R a[3] = {0.5 * dt * w[0], 0.5 * dt * w[1], 0.5 * dt * w[2]};
   const R zero = R(); // 0, in every lane
-  const R A[3][3] = {{zero, -a2, a1}, {a2, zero, -a0}, {-a1, a0, zero}};
-  const R scale = Real(2) / (Real(1) + a0 * a0 + a1 * a1 + a2 * a2);
+  const R A[3][3] = {{zero, -a[2], a[1]}, {a[2], zero, -a[0]}, {-a[1], a[0], zero}};
+  const R aa = a[0] * a[0] + a[1] * a[1] + a[2] * a[2];
+  const R scale = Real(2) / (Real(1) + aa);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-    {
-      const R A2 = A[i][0] * A[0][j] + A[i][1] * A[1][j] + A[i][2] * A[2][j];
-      Q[i][j] = Real(i == j ? 1 : 0) + scale * (A[i][j] + A2);
-    }
+      Q[i][j] = i == j ? Real(1) + scale * (a[i] * a[i] - aa) : scale * (A[i][j] + a[i] * a[j]);
 }
 
 } // namespace scpdyn

@@ -211,7 +211,7 @@ void checkHourglass(const Real ref[][3])
   for (int n = 0; n < N; ++n)
     for (int i = 0; i < 3; ++i)
       v[n][i] = i < D ? 1.0 + 2 * x[n][0] - 3 * x[n][1] + (D == 3 ? 0.5 * x[n][2] : 0) : 0;
-  const Real p = hourglassForces<T>(x, v, B, V, 1000, 5000, HourglassType::Viscous, 0.1, 1e-6, Q, f);
+  const Real p = hourglassForces<T>(x, v, B, V, hourglassAreaScale<T>(V), 1000, 5000, HourglassType::Viscous, 0.1, 1e-6, Q, f);
   EXPECT_NEAR(p, 0, 1e-6);
   for (int n = 0; n < N; ++n)
     for (int i = 0; i < D; ++i)
@@ -219,8 +219,41 @@ void checkHourglass(const Real ref[][3])
   for (int n = 0; n < N; ++n)
     for (int i = 0; i < 3; ++i)
       v[n][i] = i == 0 ? hourglassBase<T>(0, n) : 0;
-  const Real p2 = hourglassForces<T>(x, v, B, V, 1000, 5000, HourglassType::Viscous, 0.1, 1e-6, Q, f);
+  const Real p2 = hourglassForces<T>(x, v, B, V, hourglassAreaScale<T>(V), 1000, 5000, HourglassType::Viscous, 0.1, 1e-6, Q, f);
   EXPECT_GT(p2, 0); // the mode is damped: positive dissipation
+}
+
+// The butterflies of the hex8 hourglass (hex8ModeSums, hex8ModeSpread) against the sums with
+// the base-vector table: every sign must be that of hourglassBase<Hex8>. Tolerance: a few ulp
+// of the largest term (8 terms of size <= 1 in different order).
+TEST(ElementKinematics, Hex8ModeButterfliesMatchTheBaseVectors)
+{
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  for (int trial = 0; trial < 100; ++trial)
+  {
+    Real y[8], m[4], got[4], spread[8];
+    for (int a = 0; a < 8; ++a)
+      y[a] = u(rng);
+    for (int k = 0; k < 4; ++k)
+      m[k] = u(rng);
+    hex8ModeSums(y[0], y[1], y[2], y[3], y[4], y[5], y[6], y[7], got);
+    hex8ModeSpread(m, spread);
+    for (int k = 0; k < 4; ++k)
+    {
+      Real ref = 0;
+      for (int a = 0; a < 8; ++a)
+        ref += hourglassBase<ElementType::Hex8>(k, a) * y[a];
+      EXPECT_NEAR(got[k], ref, 1e-14) << "mode " << k;
+    }
+    for (int a = 0; a < 8; ++a)
+    {
+      Real ref = 0;
+      for (int k = 0; k < 4; ++k)
+        ref += hourglassBase<ElementType::Hex8>(k, a) * m[k];
+      EXPECT_NEAR(spread[a], ref, 1e-14) << "node " << a;
+    }
+  }
 }
 
 TEST(ElementKinematics, HourglassOrthogonalToLinearFields)
