@@ -5,7 +5,6 @@
 /// Include from exactly one translation unit per executable (it defines malloc & co.).
 #include "driver/Solver.hpp"
 #include "input/Deck.hpp"
-#include "material/MaterialLibrary.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -119,8 +118,8 @@ inline Solver &boxSolver(const std::string &scatter)
   return *s;
 }
 
-/// \brief Kernel inputs the Solver keeps private, rebuilt here from its deck and
-/// connectivity exactly as Setup.cpp builds them.
+/// \brief Kernel inputs: the Solver's materials, and the corners it keeps private, rebuilt
+/// here from its connectivity exactly as Setup.cpp builds them.
 struct KernelExtras
 {
   DeviceView<MaterialParams *> materials;
@@ -130,13 +129,7 @@ struct KernelExtras
 inline KernelExtras makeKernelExtras(const Solver &s)
 {
   KernelExtras k;
-  const Deck &deck = s.deck();
-  k.materials = DeviceView<MaterialParams *>("bench_materials", deck.materials.size());
-  auto h_mat = Kokkos::create_mirror_view(k.materials);
-  for (size_t i = 0; i < deck.materials.size(); ++i)
-    h_mat(i) = makeMaterialParams(deck.materials[i]);
-  Kokkos::deep_copy(k.materials, h_mat);
-
+  k.materials = s.materials();
   k.corners = makeNodeCorners(s.elements(), s.groups(), s.nodes().count,
                               ExecSpace().concurrency());
   return k;

@@ -81,6 +81,8 @@ public:
   double cycleWallTime() const { return _cycle_wall; }
   const std::vector<ElementGroup> &groups() const { return _groups; }
   const std::vector<MaterialParams> &materialParams() const { return _materials_host; }
+  /// \brief The materials as the element step reads them (device copy of materialParams()).
+  const DeviceView<MaterialParams *> &materials() const { return _materials; }
   /// \brief Device element id of a mesh element id (parts numbered in deck order).
   Index deviceElement(Index mesh_element) const { return _host_to_device_element[size_t(mesh_element)]; }
   /// \brief Current energies and momentum of the whole model (reduces over elements and

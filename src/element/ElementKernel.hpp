@@ -290,15 +290,7 @@ struct ElementKernel
         const Index e = el[l];
         const MaterialParams &mat = materials(mat_id(e));
         uses_history[l] = modelUsesHistory(mat.model);
-        MaterialStep st;
-        for (int j = 0; j < 6; ++j)
-          st.D[j] = k.D[j][l];
-        st.dt = ctl.dt;
-        st.rho_old = k.rho_old[l];
-        st.rho_new = k.rho_new[l];
-        st.q = k.q_mean[l];
-        st.time = ctl.half_time;
-        st.length = k.length[l];
+        const MaterialStep st = materialStep<T>(k, ctl, l);
         Real stress[6];
         for (int j = 0; j < 6; ++j)
           stress[j] = s.stress[j][l];

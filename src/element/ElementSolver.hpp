@@ -201,20 +201,21 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
   }
 }
 
-/// \brief The material's MaterialStep from phase 1 (one element).
-template <ElementType T>
-KOKKOS_INLINE_FUNCTION MaterialStep materialStep(const ElementKinematicsOf<T, Real> &k,
-                                                 const ElementControls &ctl)
+/// \brief The material's MaterialStep from phase 1: of the element (R = Real), or of lane
+/// `lane` of a pack.
+template <ElementType T, class R>
+KOKKOS_INLINE_FUNCTION MaterialStep materialStep(const ElementKinematicsOf<T, R> &k,
+                                                 const ElementControls &ctl, int lane = 0)
 {
   MaterialStep st;
   for (int i = 0; i < 6; ++i)
-    st.D[i] = k.D[i];
+    st.D[i] = laneValue(k.D[i], lane);
   st.dt = ctl.dt;
-  st.rho_old = k.rho_old;
-  st.rho_new = k.rho_new;
-  st.q = k.q_mean;
+  st.rho_old = laneValue(k.rho_old, lane);
+  st.rho_new = laneValue(k.rho_new, lane);
+  st.q = laneValue(k.q_mean, lane);
   st.time = ctl.half_time;
-  st.length = k.length;
+  st.length = laneValue(k.length, lane);
   return st;
 }
 

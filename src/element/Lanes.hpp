@@ -152,6 +152,12 @@ using LaneArg = typename LaneIdentity<R>::type;
 template <class R>
 struct LaneOps;
 
+/// \brief Lane `lane` of a pack; a Real is its own only lane.
+KOKKOS_INLINE_FUNCTION Real laneValue(const Real &r, int) { return r; }
+#ifdef SCPDYN_ELEMENT_LANES
+inline Real laneValue(const LanePack &r, int lane) { return r[lane]; }
+#endif
+
 template <>
 struct LaneOps<Real>
 {

@@ -109,11 +109,7 @@ TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksT
   ctl.q_linear = d.bulk_viscosity_linear;
   ctl.q_quadratic = d.bulk_viscosity_quadratic;
   ctl.gather = true;
-  DeviceView<MaterialParams *> materials("materials", s.materialParams().size());
-  auto h_mat = Kokkos::create_mirror_view(materials);
-  for (size_t m = 0; m < s.materialParams().size(); ++m)
-    h_mat(m) = s.materialParams()[m];
-  Kokkos::deep_copy(materials, h_mat);
+  const DeviceView<MaterialParams *> materials = s.materials();
   auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), s.elements().conn);
 
   StepResult one;
