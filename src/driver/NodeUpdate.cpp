@@ -12,16 +12,6 @@ bool hasExternalLoads(const BoundaryConditions &bc, const Real gravity[3])
 void zeroForces(const NodeFields &nodes, const Real gravity[3], const bool loads)
 {
   auto f_int = nodes.f_int;
-  if (!loads)
-  {
-    Kokkos::parallel_for(
-        "zeroForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
-        KOKKOS_LAMBDA(const Index n) {
-          for (int i = 0; i < 3; ++i)
-            f_int(n, i) = 0;
-        });
-    return;
-  }
   auto f_ext = nodes.f_ext;
   auto mass = nodes.mass;
   const Real g0 = gravity[0], g1 = gravity[1], g2 = gravity[2];
@@ -30,6 +20,8 @@ void zeroForces(const NodeFields &nodes, const Real gravity[3], const bool loads
       KOKKOS_LAMBDA(const Index n) {
         for (int i = 0; i < 3; ++i)
           f_int(n, i) = 0;
+        if (!loads) // f_ext keeps its zero
+          return;
         const Real m = mass(n);
         f_ext(n, 0) = m * g0;
         f_ext(n, 1) = m * g1;

@@ -247,6 +247,21 @@ KOKKOS_INLINE_FUNCTION Real characteristicLength(const Real x[][3], Real measure
   }
 }
 
+/// \brief Velocity gradient Lh_ij = sum_a v_ai B_aj of an element with N nodes in dimension D
+/// (the components past D are 0). R: Real or a lane pack.
+template <int N, int D, class R>
+KOKKOS_INLINE_FUNCTION void velocityGradient(const R v[][3], const R B[][3], R Lh[3][3])
+{
+  const R zero = LaneOps<R>::broadcast(0);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      Lh[i][j] = zero;
+  for (int a = 0; a < N; ++a)
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j)
+        Lh[i][j] += v[a][i] * B[a][j];
+}
+
 /// \brief elementGradients() and characteristicLength() together: the hex8 reuses its face
 /// normals (same arithmetic, so the same bits as the two calls). Returns the measure.
 /// R: Real, or a lane pack for the hex8 (Lanes.hpp).

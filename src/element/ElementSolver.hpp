@@ -138,16 +138,9 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
   constexpr int D = ElementTraits<T>::dim;
   using Ops = LaneOps<R>;
   const R zero = Ops::broadcast(0);
-  R(&Lh)[3][3] = k.Lh;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      Lh[i][j] = zero;
-  for (int a = 0; a < N; ++a)
-    for (int i = 0; i < D; ++i)
-      for (int j = 0; j < D; ++j)
-        Lh[i][j] += v[a][i] * k.B[a][j];
+  velocityGradient<N, D>(v, k.B, k.Lh);
   R L[3][3];
-  midpointVelocityGradient<D>(Lh, 0.5 * ctl.dt, L);
+  midpointVelocityGradient<D>(k.Lh, 0.5 * ctl.dt, L);
   k.D[0] = L[0][0];
   k.D[1] = L[1][1];
   k.D[2] = L[2][2];

@@ -177,13 +177,7 @@ KOKKOS_INLINE_FUNCTION R hex8HourglassForces(const R x[8][3], const R v[8][3], c
                                              Real dt, R Q[kHourglassSize], R f[8][3])
 {
   R Lh[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-    {
-      Lh[i][j] = LaneOps<R>::broadcast(0);
-      for (int a = 0; a < 8; ++a)
-        Lh[i][j] += v[a][i] * B[a][j];
-    }
+  velocityGradient<8, 3>(v, B, Lh);
   R GQ[8][3], H[3][3];
   const R power = hex8HourglassResistances<R>(x, v, B, Lh, V, Vs, rho, c, type, kappa, dt, Q, GQ, H);
   for (int a = 0; a < 8; ++a)
