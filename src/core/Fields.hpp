@@ -38,6 +38,8 @@ struct ElementFields
   RealView hourglass_energy; ///< accumulated hourglass work [J]
   HistoryView history;
   HourglassView hourglass; ///< stiffness-form resistances
+  /// 1 at e if the hexes e .. e + kElementLanes - 1 are a row pack (markRowPacks()), else 0
+  DeviceView<std::uint8_t *> row_pack;
   Index count = 0;
 };
 

@@ -290,6 +290,7 @@ void Solver::setupFields()
     h_materials(i) = _materials_host[i];
   Kokkos::deep_copy(_materials, h_materials);
 
+  _elems.row_pack = markRowPacks(_elems, _groups);
   if (cornerGather(_deck))
     _corners = makeNodeCorners(_elems, _groups, num_nodes, ExecSpace().concurrency());
 }

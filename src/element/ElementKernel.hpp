@@ -28,6 +28,7 @@ struct ElementKernel
 {
   static constexpr int N = ElementTraits<T>::nodes;
   ConnView conn;
+  DeviceView<std::uint8_t *> row_pack; ///< ElementFields::row_pack
   VectorView x_n, v_n;
   AtomicVectorView f_atomic;
   VectorView f_plain;
@@ -243,18 +244,28 @@ struct ElementKernel
       el[l] = first + (l < count ? l : count - 1);
     static_assert(std::is_same<VectorView::array_layout, Kokkos::LayoutRight>::value,
                   "loadTriples and addTriples read node n's vector at data() + 3 n");
-    Index node[N][W];
-    for (int a = 0; a < N; ++a)
-      for (int l = 0; l < W; ++l)
-        node[a][l] = conn(el[l], a);
+    // a row pack (markRowPacks): the rows' first nodes, and each row read once
+    const bool row = count == W && row_pack(first) != 0;
+    Index row_base[4], node[N][W];
     P x[N][3], v[N][3];
+    if (row)
+      for (int r = 0; r < 4; ++r)
+      {
+        row_base[r] = conn(first, kHexRowMinus[r]);
+        loadRowTriples(v_n.data(), row_base[r], v[kHexRowMinus[r]], v[kHexRowPlus[r]]);
+        loadRowTriples(x_n.data(), row_base[r], x[kHexRowMinus[r]], x[kHexRowPlus[r]]);
+      }
+    else
+      for (int a = 0; a < N; ++a)
+      {
+        for (int l = 0; l < W; ++l)
+          node[a][l] = conn(el[l], a);
+        loadTriples(v_n.data(), node[a], v[a]);
+        loadTriples(x_n.data(), node[a], x[a]);
+      }
     for (int a = 0; a < N; ++a)
-    {
-      loadTriples(v_n.data(), node[a], v[a]);
-      loadTriples(x_n.data(), node[a], x[a]);
       for (int i = 0; i < 3; ++i)
         x[a][i] += half_dt * v[a][i];
-    }
     ElementKinematicsOf<T, P> k;
     elementGeometry<T, Axi>(x, k);
     bool valid = true;
@@ -311,7 +322,11 @@ struct ElementKernel
       if (scatter == Scatter::Corners)
         for (int l = 0; l < W; ++l)
           shared |= shared_corners(first + l);
-      if (scatter != Scatter::Atomic && shared == 0)
+      if (scatter != Scatter::Atomic && shared == 0 && row)
+        for (int r4 = 0; r4 < 4; ++r4)
+          addRowTriples(f_plain.data(), row_base[r4], r.force[kHexRowMinus[r4]],
+                        r.force[kHexRowPlus[r4]]);
+      else if (scatter != Scatter::Atomic && shared == 0)
         addTriples<N>(f_plain.data(), node, r.force);
       else
         for (int l = 0; l < W; ++l)

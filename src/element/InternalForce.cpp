@@ -21,6 +21,7 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
 {
   ElementKernel<T, Axi> k;
   k.conn = el.conn;
+  k.row_pack = el.row_pack;
   k.x_n = nodes.x;
   k.v_n = nodes.v;
   k.f_atomic = nodes.f_int;
@@ -199,6 +200,30 @@ NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<Elemen
   nc.corner_base = toDevice(base, "corner_base");
   nc.corner_force = VectorView("corner_force", size_t(slots));
   return nc;
+}
+
+DeviceView<std::uint8_t *> markRowPacks(const ElementFields &elems,
+                                        const std::vector<ElementGroup> &groups)
+{
+  DeviceView<std::uint8_t *> row_pack("row_pack", size_t(elems.count));
+  auto h_row = Kokkos::create_mirror_view(row_pack);
+  Kokkos::deep_copy(h_row, std::uint8_t(0));
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), elems.conn);
+  constexpr int W = kElementLanes;
+  for (const auto &g : groups)
+    if (g.type == ElementType::Hex8)
+      for (Index e = g.begin; e + W <= g.end; ++e)
+      {
+        bool row = true;
+        for (int r = 0; r < 4; ++r)
+          row = row && conn(e, kHexRowPlus[r]) == conn(e, kHexRowMinus[r]) + 1;
+        for (int l = 1; l < W && row; ++l)
+          for (int a = 0; a < 8; ++a)
+            row = row && conn(e + l, a) == conn(e, a) + l;
+        h_row(e) = row ? 1 : 0;
+      }
+  Kokkos::deep_copy(row_pack, h_row);
+  return row_pack;
 }
 
 void gatherCornerForces(const NodeFields &nodes, const NodeCorners &corners)

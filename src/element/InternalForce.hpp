@@ -48,6 +48,18 @@ Real computeElementForces(const std::vector<ElementGroup> &groups, const Element
 NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
                             Index num_nodes, int chunks);
 
+/// \brief The four rows of a hex row pack (markRowPacks()): lane l's corner kHexRowMinus[r] is
+/// node base_r + l and its corner kHexRowPlus[r] node base_r + l + 1.
+constexpr int kHexRowMinus[4] = {0, 3, 4, 7}, kHexRowPlus[4] = {1, 2, 5, 6};
+
+/// \brief ElementFields::row_pack: 1 at hex e if the hexes e .. e + kElementLanes - 1 of one
+/// group have, in lane l, corner a at node conn(e, a) + l, and corners 1, 2, 5, 6 at corners
+/// 0, 3, 4, 7 plus one: four rows of kElementLanes + 1 consecutive nodes, which step 6 reads
+/// and adds to as whole rows (loadRowTriples, addRowTriples). Block meshes numbered along x
+/// (the built-in generators) are made of them; other packs take the general path.
+DeviceView<std::uint8_t *> markRowPacks(const ElementFields &elems,
+                                        const std::vector<ElementGroup> &groups);
+
 /// \brief f_int(n) = sum of the corner forces of each shared node n, in ascending corner order.
 void gatherCornerForces(const NodeFields &nodes, const NodeCorners &corners);
 

@@ -289,6 +289,85 @@ inline void addTriples(Real *p, const Index n[N][kElementLanes], const LanePack 
         p[3 * std::size_t(n[a][l]) + std::size_t(i)] += f[a][i][l];
 #endif
 }
+
+/// \brief Row packs: lane l's two corners of one mesh row are nodes base + l ("minus") and
+/// base + l + 1 ("plus"), so the row's W + 1 nodes are 3 (W + 1) consecutive Reals from
+/// p + 3 base (x or v, LayoutRight). Reads them once and gives both corners, component by
+/// component: the bits of loadTriples() with n[l] = base + l and base + l + 1.
+inline void loadRowTriples(const Real *p, Index base, LanePack minus[3], LanePack plus[3])
+{
+  const Real *q = p + 3 * std::size_t(base);
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  static_assert(kElementLanes == 8, "the AVX-512 row transpose is for packs of 8");
+  // nodes 0-7 as r0 r1 r2 (x0 y0 z0 x1 ...), node 8 in r3's first three slots
+  const LanePack r0 = loadPack(q), r1 = loadPack(q + 8), r2 = loadPack(q + 16);
+  const LanePack r3 = LanePack(_mm512_maskz_loadu_pd(0x7, q + 24));
+  const LanePack x05 = __builtin_shufflevector(r0, r1, 0, 3, 6, 9, 12, 15, 0, 0);
+  const LanePack y04 = __builtin_shufflevector(r0, r1, 1, 4, 7, 10, 13, 0, 0, 0);
+  const LanePack z04 = __builtin_shufflevector(r0, r1, 2, 5, 8, 11, 14, 0, 0, 0);
+  minus[0] = __builtin_shufflevector(x05, r2, 0, 1, 2, 3, 4, 5, 10, 13);
+  minus[1] = __builtin_shufflevector(y04, r2, 0, 1, 2, 3, 4, 8, 11, 14);
+  minus[2] = __builtin_shufflevector(z04, r2, 0, 1, 2, 3, 4, 9, 12, 15);
+  plus[0] = __builtin_shufflevector(minus[0], r3, 1, 2, 3, 4, 5, 6, 7, 8);
+  plus[1] = __builtin_shufflevector(minus[1], r3, 1, 2, 3, 4, 5, 6, 7, 9);
+  plus[2] = __builtin_shufflevector(minus[2], r3, 1, 2, 3, 4, 5, 6, 7, 10);
+#else
+  for (int l = 0; l < kElementLanes; ++l)
+    for (int i = 0; i < 3; ++i)
+    {
+      minus[i][l] = q[3 * l + i];
+      plus[i][l] = q[3 * l + 3 + i];
+    }
+#endif
+}
+
+/// \brief Adds the forces of a row pack's two corners (loadRowTriples()) to p: node base + j
+/// gets lane j - 1's plus corner, then lane j's minus corner. That is element order, so the
+/// bits of addTriples() with n[l] = base + l and base + l + 1; one read and one write of the
+/// row instead of 2 W.
+inline void addRowTriples(Real *p, Index base, const LanePack minus[3], const LanePack plus[3])
+{
+  Real *q = p + 3 * std::size_t(base);
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+  const LanePack &X = minus[0], &Y = minus[1], &Z = minus[2];
+  const LanePack &U = plus[0], &V = plus[1], &W = plus[2];
+  // the minus corners interleaved: x0 y0 z0 x1 y1 z1 x2 y2 | z2 x3 ... x5 | y5 z5 ... z7
+  const LanePack m0 = __builtin_shufflevector(__builtin_shufflevector(X, Y, 0, 8, 0, 1, 9, 0, 2, 10),
+                                              Z, 0, 1, 8, 3, 4, 9, 6, 7);
+  const LanePack m1 = __builtin_shufflevector(__builtin_shufflevector(X, Y, 0, 3, 11, 0, 4, 12, 0, 5),
+                                              Z, 10, 1, 2, 11, 4, 5, 12, 7);
+  const LanePack m2 = __builtin_shufflevector(__builtin_shufflevector(X, Y, 13, 0, 6, 14, 0, 7, 15, 0),
+                                              Z, 0, 13, 2, 3, 14, 5, 6, 15);
+  // the plus corners one node on: - - - u0 v0 w0 u1 v1 | w1 u2 ... u4 | v4 w4 ... w6 | u7 v7 w7
+  const LanePack p0 = __builtin_shufflevector(__builtin_shufflevector(U, V, 0, 0, 0, 0, 8, 0, 1, 9),
+                                              W, 0, 1, 2, 3, 4, 8, 6, 7);
+  const LanePack p1 = __builtin_shufflevector(__builtin_shufflevector(U, V, 0, 2, 10, 0, 3, 11, 0, 4),
+                                              W, 9, 1, 2, 10, 4, 5, 11, 7);
+  const LanePack p2 = __builtin_shufflevector(__builtin_shufflevector(U, V, 12, 0, 5, 13, 0, 6, 14, 0),
+                                              W, 0, 12, 2, 3, 13, 5, 6, 14);
+  const LanePack p3 = __builtin_shufflevector(__builtin_shufflevector(U, V, 7, 15, 0, 0, 0, 0, 0, 0),
+                                              W, 0, 1, 15, 3, 4, 5, 6, 7);
+  // node 0 has no plus term: a masked add, so its sum is f + minus as in addTriples
+  __m512d s0 = _mm512_mask_add_pd(_mm512_loadu_pd(q), 0xF8, _mm512_loadu_pd(q), __m512d(p0));
+  __m512d s1 = _mm512_add_pd(_mm512_loadu_pd(q + 8), __m512d(p1));
+  __m512d s2 = _mm512_add_pd(_mm512_loadu_pd(q + 16), __m512d(p2));
+  const __m512d s3 = _mm512_add_pd(_mm512_maskz_loadu_pd(0x7, q + 24), __m512d(p3));
+  s0 = _mm512_add_pd(s0, __m512d(m0));
+  s1 = _mm512_add_pd(s1, __m512d(m1));
+  s2 = _mm512_add_pd(s2, __m512d(m2));
+  _mm512_storeu_pd(q, s0);
+  _mm512_storeu_pd(q + 8, s1);
+  _mm512_storeu_pd(q + 16, s2);
+  _mm512_mask_storeu_pd(q + 24, 0x7, s3);
+#else
+  for (int l = 0; l < kElementLanes; ++l)
+    for (int i = 0; i < 3; ++i)
+    {
+      q[3 * l + i] += minus[i][l];
+      q[3 * l + 3 + i] += plus[i][l];
+    }
+#endif
+}
 #endif
 
 } // namespace scpdyn

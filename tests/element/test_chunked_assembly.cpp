@@ -51,8 +51,9 @@ struct StepResult
   std::vector<Real> f_int, stress, energy, hourglass;
 };
 
+/// Step 6 on copies of the state; with `row_packs` false, every pack takes the general path.
 StepResult runStep(const Solver &s, const ElementControls &ctl, const NodeCorners &corners,
-                   const DeviceView<MaterialParams *> &materials)
+                   const DeviceView<MaterialParams *> &materials, bool row_packs = true)
 {
   const ElementFields &el = s.elements();
   const NodeFields &nodes = s.nodes();
@@ -72,6 +73,8 @@ StepResult runStep(const Solver &s, const ElementControls &ctl, const NodeCorner
   copy.hourglass_energy = copyOf(el.hourglass_energy);
   copy.history = copyOf(el.history);
   copy.hourglass = copyOf(el.hourglass);
+  if (!row_packs)
+    copy.row_pack = DeviceView<std::uint8_t *>("no_row_packs", el.row_pack.extent(0));
   NodeFields n = nodes;
   n.f_int = VectorView("f_int", size_t(nodes.count));
   computeElementForces(s.groups(), ctl, n, copy, materials, corners);
@@ -96,11 +99,9 @@ StepResult runStep(const Solver &s, const ElementControls &ctl, const NodeCorner
   return r;
 }
 
-TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksTouch)
+/// The solver's deck and step as the element controls of the gather.
+ElementControls gatherControls(const Solver &s)
 {
-  Solver s(parseDeckString(kDeck, "chunked.yaml"));
-  for (int k = 0; k < 12; ++k) // stress, hourglass resistances and plastic flow in the parts
-    s.cycle();
   const Deck &d = s.deck();
   ElementControls ctl;
   ctl.dt = s.dt();
@@ -109,6 +110,15 @@ TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksT
   ctl.q_linear = d.bulk_viscosity_linear;
   ctl.q_quadratic = d.bulk_viscosity_quadratic;
   ctl.gather = true;
+  return ctl;
+}
+
+TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksTouch)
+{
+  Solver s(parseDeckString(kDeck, "chunked.yaml"));
+  for (int k = 0; k < 12; ++k) // stress, hourglass resistances and plastic flow in the parts
+    s.cycle();
+  const ElementControls ctl = gatherControls(s);
   const DeviceView<MaterialParams *> materials = s.materials();
   auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), s.elements().conn);
 
@@ -150,6 +160,40 @@ TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksT
     EXPECT_EQ(r.stress, one.stress) << chunks << " chunks";
     EXPECT_EQ(r.energy, one.energy) << chunks << " chunks";
     EXPECT_EQ(r.hourglass, one.hourglass) << chunks << " chunks";
+  }
+}
+
+// Row packs (markRowPacks) read and add whole node rows; the results must be the bits of the
+// general path, with and without chunks. In part a (9 x 5 x 3 hexes) the packs from elements
+// 0 and 72 are rows; part b's rows (4 hexes) are too short, so most packs are general.
+TEST(ChunkedAssembly, RowPacksGiveTheBitsOfTheGeneralPath)
+{
+  Solver s(parseDeckString(kDeck, "chunked.yaml"));
+  for (int k = 0; k < 12; ++k)
+    s.cycle();
+  auto row = Kokkos::create_mirror_view_and_copy(HostSpace(), s.elements().row_pack);
+  std::vector<Index> starts;
+  for (Index e = 0; e < Index(row.extent(0)); ++e)
+    if (row(e))
+      starts.push_back(e);
+  // part a's elements 0 .. 134 are e = i + 9 (j + 5 k): 8 hexes from e are a row if i <= 1
+  std::vector<Index> expected;
+  for (Index e = 0; e < 135 && kElementLanes == 8; ++e)
+    if (e % 9 <= 1)
+      expected.push_back(e);
+  if (kElementLanes == 8)
+    ASSERT_EQ(starts, expected);
+  const ElementControls ctl = gatherControls(s);
+  const NodeCorners one = makeNodeCorners(s.elements(), s.groups(), s.nodes().count, 1);
+  const StepResult general = runStep(s, ctl, one, s.materials(), false);
+  for (int chunks : {1, 2, 3})
+  {
+    const NodeCorners corners = makeNodeCorners(s.elements(), s.groups(), s.nodes().count, chunks);
+    const StepResult r = runStep(s, ctl, corners, s.materials(), true);
+    EXPECT_EQ(r.f_int, general.f_int) << chunks << " chunks";
+    EXPECT_EQ(r.stress, general.stress) << chunks << " chunks";
+    EXPECT_EQ(r.energy, general.energy) << chunks << " chunks";
+    EXPECT_EQ(r.hourglass, general.hourglass) << chunks << " chunks";
   }
 }
 

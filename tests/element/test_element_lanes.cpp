@@ -5,8 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <random>
+#include <vector>
 
 using namespace scpdyn;
 
@@ -75,6 +77,59 @@ TEST(ElementLanes, ElasticPackUpdateIsUpdateMaterialPerLane)
       ASSERT_TRUE(sameBits(ep[l], e1)) << "trial " << trial << " lane " << l;
       ASSERT_TRUE(sameBits(c[l], c1)) << "trial " << trial << " lane " << l;
     }
+  }
+#endif
+}
+
+// A row pack's nodes (loadRowTriples, addRowTriples) against the per-lane forms with
+// n[l] = base + l and base + l + 1: the same values read, the same sums in the same order
+// (node base + j: lane j - 1's plus corner, then lane j's minus corner). Signed zeros and
+// magnitudes far apart make a different order or a missing term show in the bits.
+TEST(ElementLanes, RowTriplesGiveTheBitsOfThePerLaneTriples)
+{
+#ifndef SCPDYN_ELEMENT_LANES
+  GTEST_SKIP() << "no lane packs in this build (kElementLanes = 1)";
+#else
+  constexpr int W = kElementLanes;
+  using P = LanePack;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<Real> u(-1, 1);
+  auto value = [&]() {
+    const int kind = int(rng() % 8);
+    return kind == 0 ? -0.0 : kind == 1 ? 0.0 : u(rng) * std::pow(10.0, int(rng() % 33) - 16);
+  };
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const Index nodes = W + 1 + Index(rng() % 5), base = Index(rng() % Index(nodes - W));
+    std::vector<Real> p(size_t(3 * nodes));
+    for (Real &a : p)
+      a = value();
+    Index n[2][W];
+    for (int l = 0; l < W; ++l)
+    {
+      n[0][l] = base + l;
+      n[1][l] = base + l + 1;
+    }
+    P minus[3], plus[3], lane_minus[3], lane_plus[3];
+    loadRowTriples(p.data(), base, minus, plus);
+    loadTriples(p.data(), n[0], lane_minus);
+    loadTriples(p.data(), n[1], lane_plus);
+    for (int i = 0; i < 3; ++i)
+      for (int l = 0; l < W; ++l)
+      {
+        ASSERT_TRUE(sameBits(minus[i][l], lane_minus[i][l])) << trial << " " << i << " " << l;
+        ASSERT_TRUE(sameBits(plus[i][l], lane_plus[i][l])) << trial << " " << i << " " << l;
+      }
+    P f[2][3];
+    for (int c = 0; c < 2; ++c)
+      for (int i = 0; i < 3; ++i)
+        for (int l = 0; l < W; ++l)
+          f[c][i][l] = value();
+    std::vector<Real> row = p, lanes = p;
+    addRowTriples(row.data(), base, f[0], f[1]);
+    addTriples<2>(lanes.data(), n, f);
+    for (size_t k = 0; k < p.size(); ++k)
+      ASSERT_TRUE(sameBits(row[k], lanes[k])) << "trial " << trial << " slot " << k;
   }
 #endif
 }

@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Interleaved benchmark runs: the host's speed drifts by a third between minutes, so two
+builds are compared round by round, not run after run.
+
+usage: perf/interleave.py ROUNDS THREADS BENCH_BINARY... [-- GOOGLE_BENCHMARK_ARGS...]
+  e.g. perf/interleave.py 10 1 ref/bin/bench_cycle build/bin/bench_cycle -- \
+           --benchmark_filter=CycleAtomic/ --benchmark_repetitions=5
+
+Each round runs every binary once, in the order given, as one process with
+OMP_NUM_THREADS=THREADS OMP_PROC_BIND=spread OMP_PLACES=threads. Printed: each run's median
+ns_per_elem_cycle per benchmark, then per binary and benchmark the median over the rounds and
+the median of the per-round ratio to the first binary (same benchmark name, or with a
+trailing "General" dropped). Plain python3, no packages.
+"""
+import collections
+import os
+import re
+import statistics
+import subprocess
+import sys
+
+
+def main():
+    args = sys.argv[1:]
+    extra = []
+    if "--" in args:
+        extra = args[args.index("--") + 1:]
+        args = args[:args.index("--")]
+    if len(args) < 3:
+        sys.exit(__doc__)
+    rounds, threads, binaries = int(args[0]), args[1], args[2:]
+    env = dict(os.environ, OMP_NUM_THREADS=threads, OMP_PROC_BIND="spread", OMP_PLACES="threads")
+    runs = collections.defaultdict(dict)  # (binary, benchmark) -> round -> median
+    for r in range(rounds):
+        for b in binaries:
+            out = subprocess.run([b] + extra, env=env, capture_output=True, text=True).stdout
+            values = collections.defaultdict(list)
+            for line in out.splitlines():
+                m = re.match(r"^(BM_\S+?)/real_time\s.*ns_per_elem_cycle=([0-9.]+)(n|u|p)s", line)
+                if m:
+                    scale = {"n": 1.0, "u": 1e3, "p": 1e-3}[m.group(3)]
+                    values[m.group(1)].append(float(m.group(2)) * scale)
+            cells = []
+            for name, v in sorted(values.items()):
+                runs[(b, name)][r] = statistics.median(v)
+                cells.append(f"{name[3:]} {statistics.median(v):.1f}")
+            load = open("/proc/loadavg").read().split()[0]
+            print(f"round {r + 1} T{threads} {b}: {'  '.join(cells)}  (load {load})", flush=True)
+    print("median over rounds, and the median per-round ratio to the first binary:")
+    first = binaries[0]
+    for (b, name), per_round in runs.items():
+        base = runs.get((first, name)) or runs.get((first, re.sub("General$", "", name)), {})
+        ratios = [per_round[r] / base[r] for r in per_round if r in base]
+        ratio = f"{statistics.median(ratios):.3f}" if ratios else "-"
+        print(f"  {b}  {name}: {statistics.median(per_round.values()):.1f} ns, ratio {ratio}, "
+              f"rounds {' '.join(f'{v:.0f}' for v in sorted(per_round.values()))}")
+
+
+if __name__ == "__main__":
+    main()
