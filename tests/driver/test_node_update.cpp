@@ -4,10 +4,10 @@
 // general path given f_ext = 0, in 1, 2 and 3 dimensions, with and without an owned-node mask,
 // over several steps (the previous impulse enters the external work).
 #include "driver/NodeUpdate.hpp"
+#include "SameBits.hpp"
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <random>
 #include <string>
 
@@ -15,8 +15,6 @@ namespace scpdyn
 {
 namespace
 {
-
-bool sameBits(Real a, Real b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 VectorView copyOf(const VectorView &a, const char *label)
 {

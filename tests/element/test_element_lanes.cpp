@@ -2,11 +2,11 @@
 // (the kernel runs it when all lanes share an elastic + linear EOS material) gives every
 // lane the bits of updateMaterial(), so the pack and the scalar path stay bit-for-bit equal.
 #include "element/ElementSolver.hpp"
+#include "SameBits.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -14,8 +14,6 @@ using namespace scpdyn;
 
 namespace
 {
-
-bool sameBits(Real a, Real b) { return std::memcmp(&a, &b, sizeof(Real)) == 0; }
 
 TEST(ElementLanes, ElasticPackUpdateIsUpdateMaterialPerLane)
 {

@@ -1,11 +1,11 @@
 // laneCbrt (src/element/Lanes.hpp): the cube root of the element lanes against the correctly
 // rounded cube root (long double cbrtl, 64-bit mantissa, then rounded once to double).
 #include "element/Lanes.hpp"
+#include "SameBits.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 
 using namespace scpdyn;
@@ -19,8 +19,6 @@ namespace
 double ulps(double a, double b) { return std::fabs(a - b) / (std::nextafter(b, INFINITY) - b); }
 
 double correctlyRounded(double x) { return double(cbrtl(static_cast<long double>(x))); }
-
-bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 } // namespace
 

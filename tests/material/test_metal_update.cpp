@@ -2,6 +2,7 @@
 // EOS step against the closed-form hypoelastic increment and the trapezoidal work, and the
 // per-model "uses history" fact the element kernel relies on to skip the history slots.
 #include "MaterialTestUtil.hpp"
+#include "SameBits.hpp"
 
 #include <gtest/gtest.h>
 
@@ -58,11 +59,6 @@ std::vector<MaterialSpec> allModels()
                    {{"density", 1630}, {"eos.A", 371.2e9}, {"eos.B", 3.231e9},
                     {"eos.R1", 4.15}, {"eos.R2", 0.95}, {"eos.omega", 0.30},
                     {"eos.E0", 7.0e9}, {"D", 6930}, {"pcj", 21.0e9}})};
-}
-
-bool sameBits(const Real *a, const Real *b, int n)
-{
-  return std::memcmp(a, b, n * sizeof(Real)) == 0;
 }
 
 TEST(MetalUpdate, ElasticLinearIsHypoelasticWithTrapezoidalWork)
