@@ -45,9 +45,11 @@ constexpr Index kNodeChunk = 256;
 /// updateNodes() in dimension Dim; without Loads, f_ext is +0 (not read) and a node component
 /// without a velocity constraint has impulse 0 and previous impulse 0, so its external work
 /// term (+-0) is skipped: adding +-0 to the sum, which starts at +0, never changes its bits.
-template <int Dim, bool Loads>
+/// With Clear, the node's forces are then set for the next cycle as zeroForces() sets them
+/// (gravity g), all three components.
+template <int Dim, bool Loads, bool Clear>
 NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt,
-                        const IndexView &owned)
+                        const IndexView &owned, const Real *g)
 {
   const bool all = owned.extent(0) == 0;
   auto x = nodes.x;
@@ -60,6 +62,7 @@ NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, 
   auto prev_impulse = nodes.external_impulse;
   const Real half_dt = 0.5 * dt;
   const Index count = nodes.count;
+  const Real gravity[3] = {Clear ? g[0] : 0, Clear ? g[1] : 0, Clear ? g[2] : 0};
   NodeSums sums;
   Kokkos::parallel_reduce(
       "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, (count + kNodeChunk - 1) / kNodeChunk),
@@ -107,6 +110,13 @@ NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, 
             x(n, i) += half_dt * (v_old + v_new);
             v(n, i) = v_new;
           }
+          if (Clear)
+            for (int i = 0; i < 3; ++i)
+            {
+              f_int(n, i) = 0;
+              if (Loads)
+                f_ext(n, i) = m * gravity[i];
+            }
         }
         s.external_work = external_work;
         s.kinetic = kinetic;
@@ -120,22 +130,25 @@ NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, 
 
 template <int Dim>
 NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt,
-                        const IndexView &owned, bool loads)
+                        const IndexView &owned, bool loads, const Real *g)
 {
-  return loads ? integrateNodes<Dim, true>(nodes, bcs, dt, owned)
-               : integrateNodes<Dim, false>(nodes, bcs, dt, owned);
+  if (g)
+    return loads ? integrateNodes<Dim, true, true>(nodes, bcs, dt, owned, g)
+                 : integrateNodes<Dim, false, true>(nodes, bcs, dt, owned, g);
+  return loads ? integrateNodes<Dim, true, false>(nodes, bcs, dt, owned, g)
+               : integrateNodes<Dim, false, false>(nodes, bcs, dt, owned, g);
 }
 
 } // namespace
 
 NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt, int dim,
-                     const IndexView &owned, const bool loads)
+                     const IndexView &owned, const bool loads, const Real *next_gravity)
 {
   if (dim == 1)
-    return integrateNodes<1>(nodes, bcs, dt, owned, loads);
+    return integrateNodes<1>(nodes, bcs, dt, owned, loads, next_gravity);
   if (dim == 2)
-    return integrateNodes<2>(nodes, bcs, dt, owned, loads);
-  return integrateNodes<3>(nodes, bcs, dt, owned, loads);
+    return integrateNodes<2>(nodes, bcs, dt, owned, loads, next_gravity);
+  return integrateNodes<3>(nodes, bcs, dt, owned, loads, next_gravity);
 }
 
 NodeSums nodeSums(const NodeFields &nodes, const IndexView &owned)

@@ -51,9 +51,12 @@ void zeroForces(const NodeFields &nodes, const Real gravity[3], bool loads = tru
 /// work and momentum. With `owned` (per node, 1 = this rank owns it) the sums cover the owned
 /// nodes only, so a node shared between ranks is counted once over the ranks; every node
 /// is updated either way. Without `loads` (hasExternalLoads()) f_ext is taken as zero unread,
-/// with the same bits.
+/// with the same bits. With `next_gravity`, the same sweep then does the next cycle's step 5
+/// (zeroForces(nodes, next_gravity, loads)) on each node once its forces are used: the forces
+/// are already in cache, and step 5's own pass over f_int (and f_ext) is saved.
 NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bc, Real dt, int dim,
-                     const IndexView &owned = IndexView(), bool loads = true);
+                     const IndexView &owned = IndexView(), bool loads = true,
+                     const Real *next_gravity = nullptr);
 
 /// \brief Kinetic energy and momentum of the current velocities (owned nodes only when
 /// `owned` is given).

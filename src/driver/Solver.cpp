@@ -92,7 +92,9 @@ void Solver::stepContactForces()
 void Solver::stepZeroForces()
 {
   ScopedStep t(_timers, "05_zero_forces");
-  zeroForces(_nodes, _deck.gravity.data(), _external_loads);
+  if (!_forces_zeroed) // else the last cycle's step 12 did it in its sweep over the nodes
+    zeroForces(_nodes, _deck.gravity.data(), _external_loads);
+  _forces_zeroed = false;
 }
 
 void Solver::stepElementSolvers()
@@ -139,7 +141,9 @@ void Solver::stepUpdateNodes()
   ScopedStep t(_timers, "12_update_nodes");
   updateVelocityValues(_bc, _time + _dt);
   _last_sums = updateNodes(_nodes, _bc, _dt, _deck.dimension,
-                           _dd ? _dd->owned_device : IndexView(), _external_loads);
+                           _dd ? _dd->owned_device : IndexView(), _external_loads,
+                           _deck.gravity.data());
+  _forces_zeroed = true;
   if (_contact) // (19) for explicit contacts, from v^{n+1}; dt_el = the element Courant step
     _dt_next = std::min(_dt_next, _contact->stableTimeStep(_nodes, _elems, _dt_next / _deck.courant));
   if (_dd) // one collective: the sums over the ranks in rank order, and the global time step

@@ -154,6 +154,7 @@ private:
   std::vector<MaterialParams> _materials_host;
   BoundaryConditions _bc;
   bool _external_loads = true; ///< hasExternalLoads(): steps 5 and 12 handle f_ext
+  bool _forces_zeroed = false; ///< step 12 left f_int = 0 and f_ext = m g for step 5
   ElementControls _controls;
   std::vector<GaugeSlot> _gauges;
   /// joint gauges: the CPs within `radius` [m] (0: half the largest contact face) of the node

@@ -2,7 +2,8 @@
 // false) they neither write nor read f_ext, nor the impulse of a node component without a
 // velocity constraint: the new x, v, impulses and every sum must then be the same bits as the
 // general path given f_ext = 0, in 1, 2 and 3 dimensions, with and without an owned-node mask,
-// over several steps (the previous impulse enters the external work).
+// over several steps (the previous impulse enters the external work). Step 12 can also do the
+// next cycle's step 5 in its sweep.
 #include "driver/NodeUpdate.hpp"
 #include "SameBits.hpp"
 
@@ -115,6 +116,46 @@ TEST(NodeUpdate, WithoutLoadsTheSameBitsAsTheGeneralPathWithZeroExternalForce)
         expectSameBits(general.v, lean.v, where.c_str());
         expectSameBits(general.external_impulse, lean.external_impulse, where.c_str());
       }
+    }
+}
+
+// With next_gravity, step 12 leaves the forces as step 5 (zeroForces) would set them for the
+// next cycle, in all three components, and its own results keep their bits: compared with
+// step 12 alone followed by step 5, with and without loads, in 1, 2 and 3 dimensions.
+TEST(NodeUpdate, StepTwelveWithNextGravityLeavesTheForcesOfStepFive)
+{
+  const Real g[3] = {0.5, -9.81, 2.0};
+  for (int dim = 1; dim <= 3; ++dim)
+    for (bool loads : {false, true})
+    {
+      std::mt19937 rng(11 + dim);
+      const NodeFields apart = randomNodes(rng);
+      Kokkos::deep_copy(apart.f_ext, randomNodes(rng).f_int); // nonzero, to see what is kept
+      NodeFields fused = apart;
+      for (VectorView *f : {&fused.x, &fused.v, &fused.f_int, &fused.f_ext, &fused.external_impulse})
+        *f = copyOf(*f, "fused");
+      BoundaryConditions bcs;
+      bcs.velocity_current = RealView("vbc", 2);
+      const NodeSums a = updateNodes(apart, bcs, 1e-3, dim, IndexView(), loads);
+      zeroForces(apart, g, loads);
+      const NodeSums b = updateNodes(fused, bcs, 1e-3, dim, IndexView(), loads, g);
+      const std::string where = "dim " + std::to_string(dim) + (loads ? ", loads" : "");
+      EXPECT_TRUE(sameBits(a.kinetic, b.kinetic)) << where;
+      EXPECT_TRUE(sameBits(a.external_work, b.external_work)) << where;
+      expectSameBits(apart.x, fused.x, where.c_str());
+      expectSameBits(apart.v, fused.v, where.c_str());
+      expectSameBits(apart.external_impulse, fused.external_impulse, where.c_str());
+      expectSameBits(apart.f_int, fused.f_int, where.c_str());
+      expectSameBits(apart.f_ext, fused.f_ext, where.c_str());
+      auto f_int = Kokkos::create_mirror_view_and_copy(HostSpace(), fused.f_int);
+      auto f_ext = Kokkos::create_mirror_view_and_copy(HostSpace(), fused.f_ext);
+      auto m = Kokkos::create_mirror_view_and_copy(HostSpace(), fused.mass);
+      int wrong = 0;
+      for (size_t k = 0; k < f_int.extent(0); ++k)
+        for (int i = 0; i < 3; ++i)
+          wrong += f_int(k, i) != 0 || (loads && f_ext(k, i) != m(k) * g[i]) ||
+                   (!loads && f_ext(k, i) == 0);
+      EXPECT_EQ(wrong, 0) << where << ": f_int = 0, f_ext = m g (with loads) or left alone";
     }
 }
 
