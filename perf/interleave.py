@@ -10,7 +10,9 @@ Each round runs every binary once, in the order given, as one process with
 OMP_NUM_THREADS=THREADS OMP_PROC_BIND=spread OMP_PLACES=threads. Printed: each run's median
 ns_per_elem_cycle per benchmark, then per binary and benchmark the median over the rounds and
 the median of the per-round ratio to the first binary (same benchmark name, or with a
-trailing "General" dropped). Plain python3, no packages.
+trailing "General" dropped), and the minimum and 10th percentile over every repetition of
+every round: the host's noise only ever slows a run down, so these show what the code does on
+a quiet machine, where the medians show what this host gave. Plain python3, no packages.
 """
 import collections
 import os
@@ -31,6 +33,7 @@ def main():
     rounds, threads, binaries = int(args[0]), args[1], args[2:]
     env = dict(os.environ, OMP_NUM_THREADS=threads, OMP_PROC_BIND="spread", OMP_PLACES="threads")
     runs = collections.defaultdict(dict)  # (binary, benchmark) -> round -> median
+    every = collections.defaultdict(list)  # (binary, benchmark) -> every repetition
     for r in range(rounds):
         for b in binaries:
             out = subprocess.run([b] + extra, env=env, capture_output=True, text=True).stdout
@@ -43,16 +46,20 @@ def main():
             cells = []
             for name, v in sorted(values.items()):
                 runs[(b, name)][r] = statistics.median(v)
+                every[(b, name)] += v
                 cells.append(f"{name[3:]} {statistics.median(v):.1f}")
             load = open("/proc/loadavg").read().split()[0]
             print(f"round {r + 1} T{threads} {b}: {'  '.join(cells)}  (load {load})", flush=True)
-    print("median over rounds, and the median per-round ratio to the first binary:")
+    print("median over rounds, the median per-round ratio to the first binary, and the min and")
+    print("10th percentile over all repetitions:")
     first = binaries[0]
     for (b, name), per_round in runs.items():
         base = runs.get((first, name)) or runs.get((first, re.sub("General$", "", name)), {})
         ratios = [per_round[r] / base[r] for r in per_round if r in base]
         ratio = f"{statistics.median(ratios):.3f}" if ratios else "-"
+        reps = sorted(every[(b, name)])
         print(f"  {b}  {name}: {statistics.median(per_round.values()):.1f} ns, ratio {ratio}, "
+              f"min {reps[0]:.1f}, p10 {reps[len(reps) // 10]:.1f}, "
               f"rounds {' '.join(f'{v:.0f}' for v in sorted(per_round.values()))}")
 
 
