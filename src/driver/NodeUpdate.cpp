@@ -9,24 +9,43 @@ bool hasExternalLoads(const BoundaryConditions &bc, const Real gravity[3])
          !bc.pressure_value.empty();
 }
 
+namespace
+{
+
+/// Step 5 on node n: f_int = 0, and with loads f_ext = m g (without, f_ext keeps its zero).
+/// zeroForces() runs it over the nodes, and step 12 with a next gravity after its update.
+struct ForceReset
+{
+  VectorView f_int, f_ext;
+  RealView mass;
+  Real g[3];
+
+  ForceReset(const NodeFields &nodes, const Real gravity[3])
+      : f_int(nodes.f_int), f_ext(nodes.f_ext), mass(nodes.mass),
+        g{gravity[0], gravity[1], gravity[2]}
+  {
+  }
+
+  KOKKOS_INLINE_FUNCTION void operator()(const Index n, const bool loads) const
+  {
+    for (int i = 0; i < 3; ++i)
+      f_int(n, i) = 0;
+    if (!loads)
+      return;
+    const Real m = mass(n);
+    for (int i = 0; i < 3; ++i)
+      f_ext(n, i) = m * g[i];
+  }
+};
+
+} // namespace
+
 void zeroForces(const NodeFields &nodes, const Real gravity[3], const bool loads)
 {
-  auto f_int = nodes.f_int;
-  auto f_ext = nodes.f_ext;
-  auto mass = nodes.mass;
-  const Real g0 = gravity[0], g1 = gravity[1], g2 = gravity[2];
+  const ForceReset reset(nodes, gravity);
   Kokkos::parallel_for(
       "zeroForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
-      KOKKOS_LAMBDA(const Index n) {
-        for (int i = 0; i < 3; ++i)
-          f_int(n, i) = 0;
-        if (!loads) // f_ext keeps its zero
-          return;
-        const Real m = mass(n);
-        f_ext(n, 0) = m * g0;
-        f_ext(n, 1) = m * g1;
-        f_ext(n, 2) = m * g2;
-      });
+      KOKKOS_LAMBDA(const Index n) { reset(n, loads); });
 }
 
 namespace
@@ -45,8 +64,7 @@ constexpr Index kNodeChunk = 256;
 /// updateNodes() in dimension Dim; without Loads, f_ext is +0 (not read) and a node component
 /// without a velocity constraint has impulse 0 and previous impulse 0, so its external work
 /// term (+-0) is skipped: adding +-0 to the sum, which starts at +0, never changes its bits.
-/// With Clear, the node's forces are then set for the next cycle as zeroForces() sets them
-/// (gravity g), all three components.
+/// With Clear, each node's forces are then set for the next cycle by ForceReset (gravity g).
 template <int Dim, bool Loads, bool Clear>
 NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt,
                         const IndexView &owned, const Real *g)
@@ -62,7 +80,8 @@ NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, 
   auto prev_impulse = nodes.external_impulse;
   const Real half_dt = 0.5 * dt;
   const Index count = nodes.count;
-  const Real gravity[3] = {Clear ? g[0] : 0, Clear ? g[1] : 0, Clear ? g[2] : 0};
+  const Real no_gravity[3] = {0, 0, 0};
+  const ForceReset reset(nodes, Clear ? g : no_gravity);
   NodeSums sums;
   Kokkos::parallel_reduce(
       "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, (count + kNodeChunk - 1) / kNodeChunk),
@@ -111,12 +130,7 @@ NodeSums integrateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, 
             v(n, i) = v_new;
           }
           if (Clear)
-            for (int i = 0; i < 3; ++i)
-            {
-              f_int(n, i) = 0;
-              if (Loads)
-                f_ext(n, i) = m * gravity[i];
-            }
+            reset(n, Loads);
         }
         s.external_work = external_work;
         s.kinetic = kinetic;

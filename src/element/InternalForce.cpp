@@ -206,8 +206,7 @@ DeviceView<std::uint8_t *> markRowPacks(const ElementFields &elems,
                                         const std::vector<ElementGroup> &groups)
 {
   DeviceView<std::uint8_t *> row_pack("row_pack", size_t(elems.count));
-  auto h_row = Kokkos::create_mirror_view(row_pack);
-  Kokkos::deep_copy(h_row, std::uint8_t(0));
+  auto h_row = Kokkos::create_mirror_view(row_pack); // zeros, as Views start
   auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), elems.conn);
   constexpr int W = kElementLanes;
   for (const auto &g : groups)
