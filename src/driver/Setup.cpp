@@ -1,6 +1,8 @@
 // Set-up of the solver (steps 1 and 2 of the paper): meshes from the deck, sets, device
 // fields, boundary conditions, gauges and the initial state.
 #include "driver/Solver.hpp"
+
+#include "contact/ContactSystem.hpp"
 #include "core/HostCopy.hpp"
 
 #include "bc/TimeFunctions.hpp"
@@ -97,6 +99,7 @@ Solver::Solver(const Deck &deck, MPI_Comm comm) : _deck(deck), _comm(comm)
   setupBoundaryConditions();
   _external_loads = hasExternalLoads(_bc, _deck.gravity.data());
   setupContact();
+  setupNodeSweep();
   setupGauges();
   setupInitialState();
   _global_mesh.reset(); // from here on a rank holds its own piece only
@@ -293,6 +296,49 @@ void Solver::setupFields()
   _elems.row_pack = markRowPacks(_elems, _groups);
   if (cornerGather(_deck))
     _corners = makeNodeCorners(_elems, _groups, num_nodes, ExecSpace().concurrency());
+}
+
+/// Step 12 inside step 6 for the nodes nothing after it touches (NodeSweep), when the element
+/// step runs chunks in a known order: one thread, or the corner gather's chunks.
+void Solver::setupNodeSweep()
+{
+#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
+  const bool ordered = false; // no chunks on a device
+#else
+  const bool ordered = ExecSpace().concurrency() == 1 || cornerGather(_deck);
+#endif
+  if (_deck.node_update != "fused" || !ordered)
+    return;
+  const Index num_nodes = _nodes.count;
+  std::vector<char> late(static_cast<size_t>(num_nodes), 0);
+  auto force_node = Kokkos::create_mirror_view_and_copy(HostSpace(), _bc.force_node);
+  for (size_t k = 0; k < force_node.extent(0); ++k)
+    late[size_t(force_node(k))] = 1;
+  auto face = Kokkos::create_mirror_view_and_copy(HostSpace(), _bc.pressure_face);
+  auto face_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), _bc.pressure_face_nodes);
+  for (size_t f = 0; f < face.extent(0); ++f) // (1D: the element's other node too)
+    for (size_t a = 0; a < face.extent(1) && Index(a) < std::max<Index>(face_nodes(f), 2); ++a)
+      if (face(f, a) >= 0)
+        late[size_t(face(f, a))] = 1;
+  if (_contact)
+  {
+    auto used = Kokkos::create_mirror_view_and_copy(HostSpace(), _contact->faces().nodes_used);
+    for (size_t k = 0; k < used.extent(0); ++k)
+      late[size_t(used(k))] = 1;
+    auto back = Kokkos::create_mirror_view_and_copy(HostSpace(), _contact->faces().back);
+    for (size_t k = 0; k < back.extent(0); ++k) // 1D: the node that orients a point face
+      if (back(k) >= 0 && back(k) < num_nodes)
+        late[size_t(back(k))] = 1;
+  }
+  if (_dd) // step 7 sums the shared nodes; a node this rank does not own is counted elsewhere
+  {
+    auto shared = Kokkos::create_mirror_view_and_copy(HostSpace(), _dd->shared_nodes);
+    for (size_t k = 0; k < shared.extent(0); ++k)
+      late[size_t(shared(k))] = 1;
+    for (Index n = 0; n < num_nodes; ++n)
+      late[size_t(n)] = char(late[size_t(n)] | !_dd->owned[size_t(n)]);
+  }
+  _sweep = makeNodeSweep(_elems, _groups, _nodes, cornerGather(_deck) ? _corners.chunks : 1, late);
 }
 
 void Solver::setupSets()

@@ -23,6 +23,7 @@ void Solver::cycle()
   stepExchangeFaceConnectivity(); // 4: bounding boxes, occupied bins, ghost-face lists
   stepZeroForces();               // 5: zero forces; external-face variables
   stepElementSolvers();           // 6: half-step kinematics, materials, internal forces
+                                  //    (and step 12 of the nodes 7-11 leave alone: NodeSweep)
   stepExchangeSharedNodeForces(); // 7: sum internal forces on shared nodes
   stepExchangeGhostFaceData();    // 8: ghost faces get x, v, face masses
   stepContactForces();            // 9: common planes: detection, geometry, forces
@@ -102,7 +103,14 @@ void Solver::stepElementSolvers()
   ScopedStep t(_timers, "06_element_solvers");
   _controls.dt = _dt;
   _controls.half_time = _time + 0.5 * _dt;
-  const Real dt_elem = computeElementForces(_groups, _controls, _nodes, _elems, _materials, _corners);
+  if (_sweep.active) // step 12 of the early nodes, in this step's sweep
+  {
+    _sweep.node = nodeIntegrator(_nodes, _bc, _dt, _dd ? _dd->owned_device : IndexView(),
+                                 _deck.gravity.data());
+    _sweep.loads = _external_loads;
+  }
+  const Real dt_elem =
+      computeElementForces(_groups, _controls, _nodes, _elems, _materials, _corners, _sweep);
   if (_controls.gather)
     gatherCornerForces(_nodes, _corners);
   std::string error;
@@ -142,7 +150,9 @@ void Solver::stepUpdateNodes()
   updateVelocityValues(_bc, _time + _dt);
   _last_sums = updateNodes(_nodes, _bc, _dt, _deck.dimension,
                            _dd ? _dd->owned_device : IndexView(), _external_loads,
-                           _deck.gravity.data());
+                           _deck.gravity.data(), _sweep.active ? &_sweep.late_runs : nullptr);
+  if (_sweep.active) // the early nodes' sums, from step 6
+    _last_sums += sweepSums(_sweep);
   _forces_zeroed = true;
   if (_contact) // (19) for explicit contacts, from v^{n+1}; dt_el = the element Courant step
     _dt_next = std::min(_dt_next, _contact->stableTimeStep(_nodes, _elems, _dt_next / _deck.courant));

@@ -91,6 +91,9 @@ public:
   /// \brief Current gauge values, in the order of gauges(), on every rank (each from the rank
   /// that owns its node or element).
   std::vector<Real> gaugeValues() const;
+  /// \brief Step 12 inside step 6 (inactive with numerics.node_update separate, or with
+  /// atomic adds on more than one thread).
+  const NodeSweep &nodeSweep() const { return _sweep; }
   /// \brief The common-plane contact, or null when the deck has no contact surfaces.
   const ContactSystem *contact() const { return _contact.get(); }
 
@@ -139,6 +142,7 @@ private:
   void stepFaceBoundaryConditions();   // 10
   void stepNodeBoundaryConditions();   // 11
   void stepUpdateNodes();              // 12
+  void setupNodeSweep();
 
   Deck _deck;
   HostMesh _mesh;
@@ -149,6 +153,7 @@ private:
   NodeFields _nodes;
   ElementFields _elems;
   NodeCorners _corners;
+  NodeSweep _sweep; ///< step 12 of the early nodes inside step 6 (numerics.node_update fused)
   std::vector<ElementGroup> _groups;
   DeviceView<MaterialParams *> _materials;
   std::vector<MaterialParams> _materials_host;

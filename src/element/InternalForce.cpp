@@ -17,7 +17,8 @@ using element_kernel::Scatter;
 template <ElementType T, bool Axi>
 Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scatter,
                  const NodeFields &nodes, const ElementFields &el,
-                 const DeviceView<MaterialParams *> &materials, const NodeCorners &corners)
+                 const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
+                 const NodeSweep &sweep, const int group_index)
 {
   ElementKernel<T, Axi> k;
   k.conn = el.conn;
@@ -46,6 +47,28 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
   k.half_dt = 0.5 * ctl.dt;
 
   Real dt_min = 0;
+  if (sweep.active) // one chunk a thread; after each block, step 12 on its early nodes
+  {
+    const ElementGroup grp = g;
+    const int chunks = sweep.chunks;
+    constexpr Index B = NodeSweep::kSweepBlock;
+    Kokkos::parallel_reduce(
+        "elementSweep", Kokkos::RangePolicy<ExecSpace>(0, chunks),
+        KOKKOS_LAMBDA(const int c, Real &local_min) {
+          const Index end = chunkBegin(grp, chunks, c + 1);
+          Index b = sweep.block_base(group_index * chunks + c);
+          for (Index first = chunkBegin(grp, chunks, c); first < end; first += B, ++b)
+          {
+            k.range(first, end - first < B ? end : first + B, local_min);
+            if (local_min < 0) // a failed element: the run stops after this step
+              sweep.block_sums(b) = NodeSums();
+            else
+              sweep.integrateBlock<ElementTraits<T>::dim>(b);
+          }
+        },
+        Kokkos::Min<Real>(dt_min));
+    return dt_min;
+  }
   if (scatter == Scatter::Corners) // one chunk a thread, its packs or elements in order
   {
     const ElementGroup grp = g;
@@ -83,18 +106,19 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
 template <bool Axi>
 Real launchAny(const ElementGroup &g, const ElementControls &ctl, Scatter s,
                const NodeFields &nodes, const ElementFields &el,
-               const DeviceView<MaterialParams *> &materials, const NodeCorners &corners)
+               const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
+               const NodeSweep &sweep, const int gi)
 {
   switch (g.type)
   {
   case ElementType::Line2:
-    return launchGroup<ElementType::Line2, false>(g, ctl, s, nodes, el, materials, corners);
+    return launchGroup<ElementType::Line2, false>(g, ctl, s, nodes, el, materials, corners, sweep, gi);
   case ElementType::Quad4:
-    return launchGroup<ElementType::Quad4, Axi>(g, ctl, s, nodes, el, materials, corners);
+    return launchGroup<ElementType::Quad4, Axi>(g, ctl, s, nodes, el, materials, corners, sweep, gi);
   case ElementType::Hex8:
-    return launchGroup<ElementType::Hex8, false>(g, ctl, s, nodes, el, materials, corners);
+    return launchGroup<ElementType::Hex8, false>(g, ctl, s, nodes, el, materials, corners, sweep, gi);
   case ElementType::Tet4:
-    return launchGroup<ElementType::Tet4, false>(g, ctl, s, nodes, el, materials, corners);
+    return launchGroup<ElementType::Tet4, false>(g, ctl, s, nodes, el, materials, corners, sweep, gi);
   }
   return 0;
 }
@@ -136,28 +160,37 @@ Real initialGroup(const ElementGroup &g, const NodeFields &nodes, const ElementF
 
 Real computeElementForces(const std::vector<ElementGroup> &groups, const ElementControls &ctl,
                           const NodeFields &nodes, const ElementFields &elems,
-                          const DeviceView<MaterialParams *> &materials, const NodeCorners &corners)
+                          const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
+                          const NodeSweep &sweep)
 {
   const Scatter s = ctl.gather                       ? Scatter::Corners
                     : ExecSpace().concurrency() == 1 ? Scatter::Plain
                                                      : Scatter::Atomic;
   Real dt_min = Kokkos::reduction_identity<Real>::min();
-  for (const auto &g : groups)
+  for (size_t gi = 0; gi < groups.size(); ++gi)
   {
-    const Real d = ctl.geometry == Geometry2D::Axisymmetric
-                       ? launchAny<true>(g, ctl, s, nodes, elems, materials, corners)
-                       : launchAny<false>(g, ctl, s, nodes, elems, materials, corners);
+    const ElementGroup &g = groups[gi];
+    const Real d =
+        ctl.geometry == Geometry2D::Axisymmetric
+            ? launchAny<true>(g, ctl, s, nodes, elems, materials, corners, sweep, int(gi))
+            : launchAny<false>(g, ctl, s, nodes, elems, materials, corners, sweep, int(gi));
     dt_min = d < dt_min ? d : dt_min;
   }
   return dt_min;
 }
 
-NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
-                            Index num_nodes, int chunks)
+namespace
 {
-  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), elems.conn);
-  // the chunk (over all groups) of each node's elements; -2 once two chunks touch it
+
+/// The chunk (group-major over all groups' chunks) of each node's elements: -1 if none, -2 once
+/// two chunks touch it; and, in `last`, the last element (in the chunk's order) touching it.
+template <class Conn>
+std::vector<int> nodeChunks(const Conn &conn, const std::vector<ElementGroup> &groups,
+                            Index num_nodes, int chunks, std::vector<Index> *last = nullptr)
+{
   std::vector<int> chunk_of(static_cast<size_t>(num_nodes), -1);
+  if (last)
+    last->assign(static_cast<size_t>(num_nodes), -1);
   int chunk = 0;
   for (const auto &g : groups)
     for (int c = 0; c < chunks; ++c, ++chunk)
@@ -166,7 +199,19 @@ NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<Elemen
         {
           int &owner = chunk_of[size_t(conn(e, a))];
           owner = owner == -1 || owner == chunk ? chunk : -2;
+          if (last)
+            (*last)[size_t(conn(e, a))] = e;
         }
+  return chunk_of;
+}
+
+} // namespace
+
+NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
+                            Index num_nodes, int chunks)
+{
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), elems.conn);
+  const std::vector<int> chunk_of = nodeChunks(conn, groups, num_nodes, chunks);
   // a slot per shared corner, in ascending (element, corner) order, so a node's slots ascend
   // as its corners do
   std::vector<std::uint8_t> mask(static_cast<size_t>(elems.count), 0);
@@ -200,6 +245,81 @@ NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<Elemen
   nc.corner_base = toDevice(base, "corner_base");
   nc.corner_force = VectorView("corner_force", size_t(slots));
   return nc;
+}
+
+namespace
+{
+
+/// Adds node n to `runs` ([begin, end) pairs, flat): it extends the last run if that run is
+/// one of those from `first_run` on, ends at n and is shorter than max_length; else a new run.
+void addToRuns(std::vector<Index> &runs, size_t first_run, Index n, Index max_length)
+{
+  if (runs.size() / 2 > first_run && runs.back() == n && runs.back() - runs.end()[-2] < max_length)
+    ++runs.back();
+  else
+    runs.insert(runs.end(), {n, n + 1});
+}
+
+DeviceView<Index * [2]> toDevicePairs(const std::vector<Index> &flat, const std::string &label)
+{
+  DeviceView<Index * [2]> v(label, flat.size() / 2);
+  auto h = Kokkos::create_mirror_view(v);
+  for (size_t i = 0; i < flat.size() / 2; ++i)
+    for (int k = 0; k < 2; ++k)
+      h(i, k) = flat[2 * i + size_t(k)];
+  Kokkos::deep_copy(v, h);
+  return v;
+}
+
+} // namespace
+
+NodeSweep makeNodeSweep(const ElementFields &elems, const std::vector<ElementGroup> &groups,
+                        const NodeFields &nodes, int chunks, std::vector<char> late)
+{
+  const Index num_nodes = nodes.count;
+  auto bc = Kokkos::create_mirror_view_and_copy(HostSpace(), nodes.bc);
+  for (Index n = 0; n < num_nodes; ++n) // step 12 imposes them, at values set in step 12
+    for (int i = 0; i < 3; ++i)
+      late[size_t(n)] = char(late[size_t(n)] | (bc(n, i) >= 0));
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), elems.conn);
+  std::vector<Index> last;
+  const std::vector<int> chunk_of = nodeChunks(conn, groups, num_nodes, chunks, &last);
+  constexpr Index B = NodeSweep::kSweepBlock;
+  // blocks of B elements from each chunk's start, group-major; the block of element e
+  std::vector<Index> base, block_of(static_cast<size_t>(elems.count), -1);
+  Index blocks = 0;
+  for (const auto &g : groups)
+    for (int c = 0; c < chunks; ++c)
+    {
+      base.push_back(blocks);
+      const Index begin = chunkBegin(g, chunks, c), end = chunkBegin(g, chunks, c + 1);
+      for (Index e = begin; e < end; ++e)
+        block_of[size_t(e)] = blocks + (e - begin) / B;
+      blocks += (end - begin + B - 1) / B;
+    }
+  // each block's early nodes in ascending runs; the late ones in runs of at most 256
+  std::vector<std::vector<Index>> early(static_cast<size_t>(blocks));
+  std::vector<Index> late_runs, runs, offsets{0};
+  for (Index n = 0; n < num_nodes; ++n)
+    if (chunk_of[size_t(n)] >= 0 && !late[size_t(n)])
+      early[size_t(block_of[size_t(last[size_t(n)])])].push_back(n);
+    else
+      addToRuns(late_runs, 0, n, 256);
+  for (const auto &block_nodes : early)
+  {
+    for (const Index n : block_nodes)
+      addToRuns(runs, size_t(offsets.back()), n, num_nodes);
+    offsets.push_back(Index(runs.size() / 2));
+  }
+  NodeSweep sweep;
+  sweep.active = true;
+  sweep.chunks = chunks;
+  sweep.block_base = toDevice(base, "sweep_block_base");
+  sweep.block_runs = toDevice(offsets, "sweep_block_runs");
+  sweep.runs = toDevicePairs(runs, "sweep_runs");
+  sweep.block_sums = DeviceView<NodeSums *>("sweep_block_sums", size_t(blocks));
+  sweep.late_runs = toDevicePairs(late_runs, "late_runs");
+  return sweep;
 }
 
 DeviceView<std::uint8_t *> markRowPacks(const ElementFields &elems,

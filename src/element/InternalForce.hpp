@@ -6,6 +6,7 @@
 #include "core/Fields.hpp"
 #include "element/Hourglass.hpp"
 #include "element/Lanes.hpp"
+#include "element/NodeSweep.hpp"
 
 namespace scpdyn
 {
@@ -38,15 +39,26 @@ KOKKOS_INLINE_FUNCTION Index chunkBegin(const ElementGroup &g, int chunks, int k
 /// adds with one thread), or with ctl.gather to f_int and to corners.corner_force for shared
 /// nodes (then call gatherCornerForces). Returns the smallest stable
 /// element time step h / c before the Courant factor; a negative value
-/// -(e+1) reports an inverted element e.
+/// -(e+1) reports an inverted element e. With an active `sweep` (makeNodeSweep()), each
+/// chunk also does step 12 on its early nodes after each block of its elements; then a
+/// chunk that flags a failed element integrates no more of its nodes.
 Real computeElementForces(const std::vector<ElementGroup> &groups, const ElementControls &ctl,
                           const NodeFields &nodes, const ElementFields &elems,
-                          const DeviceView<MaterialParams *> &materials, const NodeCorners &corners);
+                          const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
+                          const NodeSweep &sweep = NodeSweep());
 
 /// \brief The chunks of the deterministic assembly (NodeCorners) for `chunks` threads: which
 /// nodes two chunks share, their corners, and the corner force array.
 NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
                             Index num_nodes, int chunks);
+
+/// \brief The node sweep of step 6 (NodeSweep) for `chunks` chunks (1 with one thread; the
+/// NodeCorners chunks with the corner gather). `late` (per node, nonzero) marks the nodes that
+/// something after step 6 touches, and those this rank does not own; a node with a velocity
+/// constraint, or that two chunks or groups touch, is late too. The caller sets `loads` and
+/// the NodeIntegrator each cycle.
+NodeSweep makeNodeSweep(const ElementFields &elems, const std::vector<ElementGroup> &groups,
+                        const NodeFields &nodes, int chunks, std::vector<char> late);
 
 /// \brief The four rows of a hex row pack (markRowPacks()): lane l's corner kHexRowMinus[r] is
 /// node base_r + l and its corner kHexRowPlus[r] node base_r + l + 1.

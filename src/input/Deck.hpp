@@ -183,6 +183,7 @@ struct Deck
   Real bulk_viscosity_linear = 0.06;
   Real bulk_viscosity_quadratic = 1.5;
   std::string scatter = "gather";         ///< gather (deterministic) | atomic
+  std::string node_update = "fused";      ///< fused (step 12 in step 6's sweep) | separate
   std::array<Real, 3> gravity{{0, 0, 0}};
 
   // output

@@ -95,7 +95,7 @@ void parseNumerics(const YamlMap &root, Deck &deck)
 {
   if (!root.has("numerics"))
     return;
-  const YamlMap n = root["numerics"].map({"hourglass", "bulk_viscosity", "scatter"});
+  const YamlMap n = root["numerics"].map({"hourglass", "bulk_viscosity", "scatter", "node_update"});
   if (n.has("hourglass"))
   {
     const YamlMap h = n["hourglass"].map({"type", "coefficient"});
@@ -112,6 +112,7 @@ void parseNumerics(const YamlMap &root, Deck &deck)
         readReal(q, "quadratic", deck.bulk_viscosity_quadratic, isNonNegative, ">= 0");
   }
   deck.scatter = n.choice("scatter", {"atomic", "gather"}, deck.scatter);
+  deck.node_update = n.choice("node_update", {"fused", "separate"}, deck.node_update);
 }
 
 void parseOutput(const YamlMap &root, Deck &deck, const std::string &stem)

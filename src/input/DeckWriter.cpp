@@ -234,7 +234,8 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   out << YAML::EndMap << YAML::Key << "bulk_viscosity" << YAML::Value << YAML::BeginMap;
   real(out << YAML::Key << "linear" << YAML::Value, deck.bulk_viscosity_linear);
   real(out << YAML::Key << "quadratic" << YAML::Value, deck.bulk_viscosity_quadratic);
-  out << YAML::EndMap << YAML::Key << "scatter" << YAML::Value << deck.scatter << YAML::EndMap;
+  out << YAML::EndMap << YAML::Key << "scatter" << YAML::Value << deck.scatter;
+  out << YAML::Key << "node_update" << YAML::Value << deck.node_update << YAML::EndMap;
 
   vector(out, "gravity", deck.gravity, dim);
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;

@@ -2,6 +2,7 @@
 // nodes of one chunk, corner stores + gather for the nodes two chunks share. The forces and
 // the element state must be the same bits for every chunk count, C = 1 being the plain
 // one-thread loop; and the shared nodes must be exactly those two chunks touch.
+#include "StepFixtures.hpp"
 #include "driver/Solver.hpp"
 #include "element/InternalForce.hpp"
 #include "input/Deck.hpp"
@@ -9,7 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <set>
-#include <type_traits>
 #include <vector>
 
 namespace scpdyn
@@ -17,34 +17,8 @@ namespace scpdyn
 namespace
 {
 
-// Two hex parts whose element counts are not multiples of a pack (tail packs) and a tet part
-// (a second element group), different materials, moving against each other.
-const char *kDeck = R"(title: chunked assembly
-dimension: 3
-time: {end: 1.0, courant: 0.5}
-numerics: {scatter: gather}
-materials:
-  - {name: steel, model: elastic, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.3}
-  - {name: soft, model: elastic_plastic, density: 2700, youngs_modulus: 70.0e9, poisson_ratio: 0.33,
-     yield_stress: 1.0e6, hardening_modulus: 1.0e8}
-parts:
-  - name: a
-    material: steel
-    mesh: {type: block, element: hex8, elements: [9, 5, 3], size: [0.9, 0.5, 0.3]}
-    initial_velocity: [-50.0, 20.0, 0.0]
-  - name: b
-    material: soft
-    mesh: {type: block, element: hex8, elements: [4, 3, 5], size: [0.4, 0.3, 0.5], origin: [1, 0, 0]}
-    initial_velocity: [30.0, 0.0, -40.0]
-  - name: c
-    material: steel
-    mesh: {type: block, element: tet4, elements: [3, 2, 2], size: [0.3, 0.2, 0.2], origin: [0, 1, 0]}
-    initial_velocity: [0.0, -60.0, 10.0]
-node_sets:
-  - {name: wall, box: {min: [0, 0, 0], max: [0, 0.5, 0.3]}}
-boundary_conditions:
-  - {type: velocity, node_set: wall, component: x, value: 0.0}
-)";
+using test::gatherControls;
+using test::kThreePartsDeck;
 
 struct StepResult
 {
@@ -58,21 +32,7 @@ StepResult runStep(const Solver &s, const ElementControls &ctl, const NodeCorner
   const ElementFields &el = s.elements();
   const NodeFields &nodes = s.nodes();
   // the step changes the element state: run it on a copy of every state View
-  auto copyOf = [](const auto &src) {
-    std::decay_t<decltype(src)> dst(src.label() + "_copy", src.extent(0));
-    Kokkos::deep_copy(dst, src);
-    return dst;
-  };
-  ElementFields copy = el;
-  copy.stress = copyOf(el.stress);
-  copy.energy = copyOf(el.energy);
-  copy.plastic_strain = copyOf(el.plastic_strain);
-  copy.volume = copyOf(el.volume);
-  copy.q = copyOf(el.q);
-  copy.sound_speed = copyOf(el.sound_speed);
-  copy.hourglass_energy = copyOf(el.hourglass_energy);
-  copy.history = copyOf(el.history);
-  copy.hourglass = copyOf(el.hourglass);
+  ElementFields copy = test::copyElementState(el);
   if (!row_packs)
     copy.row_pack = DeviceView<std::uint8_t *>("no_row_packs", el.row_pack.extent(0));
   NodeFields n = nodes;
@@ -99,23 +59,9 @@ StepResult runStep(const Solver &s, const ElementControls &ctl, const NodeCorner
   return r;
 }
 
-/// The solver's deck and step as the element controls of the gather.
-ElementControls gatherControls(const Solver &s)
-{
-  const Deck &d = s.deck();
-  ElementControls ctl;
-  ctl.dt = s.dt();
-  ctl.half_time = s.time() + 0.5 * s.dt();
-  ctl.hourglass_coefficient = d.hourglass_coefficient;
-  ctl.q_linear = d.bulk_viscosity_linear;
-  ctl.q_quadratic = d.bulk_viscosity_quadratic;
-  ctl.gather = true;
-  return ctl;
-}
-
 TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksTouch)
 {
-  Solver s(parseDeckString(kDeck, "chunked.yaml"));
+  Solver s(parseDeckString(kThreePartsDeck, "chunked.yaml"));
   for (int k = 0; k < 12; ++k) // stress, hourglass resistances and plastic flow in the parts
     s.cycle();
   const ElementControls ctl = gatherControls(s);
@@ -168,7 +114,7 @@ TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksT
 // 0 and 72 are rows; part b's rows (4 hexes) are too short, so most packs are general.
 TEST(ChunkedAssembly, RowPacksGiveTheBitsOfTheGeneralPath)
 {
-  Solver s(parseDeckString(kDeck, "chunked.yaml"));
+  Solver s(parseDeckString(kThreePartsDeck, "chunked.yaml"));
   for (int k = 0; k < 12; ++k)
     s.cycle();
   auto row = Kokkos::create_mirror_view_and_copy(HostSpace(), s.elements().row_pack);

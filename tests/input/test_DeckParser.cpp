@@ -26,6 +26,7 @@ numerics:
   hourglass: {type: stiffness, coefficient: 0.1}
   bulk_viscosity: {linear: 0.1, quadratic: 1.2}
   scatter: gather
+  node_update: separate
 gravity: [0, 0, -9.81]
 output: {directory: results/full, field_interval: 1.0e-4, history_interval: 1.0e-6,
          progress_interval: 5}
@@ -133,6 +134,7 @@ void expectSameDeck(const Deck &a, const Deck &b)
   EXPECT_EQ(a.bulk_viscosity_linear, b.bulk_viscosity_linear);
   EXPECT_EQ(a.bulk_viscosity_quadratic, b.bulk_viscosity_quadratic);
   EXPECT_EQ(a.scatter, b.scatter);
+  EXPECT_EQ(a.node_update, b.node_update);
   EXPECT_EQ(a.gravity, b.gravity);
   EXPECT_EQ(a.output_dir, b.output_dir);
   EXPECT_EQ(a.field_interval, b.field_interval);
@@ -224,6 +226,7 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(d.bulk_viscosity_linear, 0.1);
   EXPECT_EQ(d.bulk_viscosity_quadratic, 1.2);
   EXPECT_EQ(d.scatter, "gather");
+  EXPECT_EQ(d.node_update, "separate");
   EXPECT_EQ(d.gravity, (std::array<Real, 3>{{0, 0, -9.81}}));
   EXPECT_EQ(d.output_dir, "results/full");
   EXPECT_EQ(d.field_interval, 1.0e-4);
@@ -240,14 +243,14 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(steel.eos, "linear");
   EXPECT_EQ(steel.values.size(), 5u);
   EXPECT_EQ(steel.values.at("yield_stress"), 3.5e8);
-  EXPECT_EQ(steel.lines.at("density"), 17);
-  EXPECT_EQ(steel.line, 15);
+  EXPECT_EQ(steel.lines.at("density"), 18);
+  EXPECT_EQ(steel.line, 16);
   EXPECT_EQ(granite.index, 1);
   EXPECT_EQ(granite.model, "elastic");
   EXPECT_EQ(granite.eos, "mie_gruneisen");
   EXPECT_EQ(granite.values.at("eos.c0"), 3700.0);
   EXPECT_EQ(granite.values.at("shear_modulus"), 2.2e10);
-  EXPECT_EQ(granite.lines.at("eos.gamma0"), 23);
+  EXPECT_EQ(granite.lines.at("eos.gamma0"), 24);
 
   ASSERT_EQ(d.parts.size(), 3u);
   EXPECT_EQ(d.parts[0].mesh.element, "hex8");
@@ -307,6 +310,7 @@ TEST(DeckParser, MinimalDeckGetsDocumentedDefaults)
   EXPECT_EQ(d.bulk_viscosity_linear, 0.06);
   EXPECT_EQ(d.bulk_viscosity_quadratic, 1.5);
   EXPECT_EQ(d.scatter, "gather");
+  EXPECT_EQ(d.node_update, "fused");
   EXPECT_EQ(d.gravity, (std::array<Real, 3>{{0, 0, 0}}));
   EXPECT_EQ(d.output_dir, "out/impact_2d");
   EXPECT_EQ(d.field_interval, 0.0);
