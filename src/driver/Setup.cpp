@@ -1,11 +1,10 @@
 // Set-up of the solver (steps 1 and 2 of the paper): meshes from the deck, sets, device
 // fields, boundary conditions, gauges and the initial state.
 #include "driver/Solver.hpp"
-
-#include "contact/ContactSystem.hpp"
 #include "core/HostCopy.hpp"
 
 #include "bc/TimeFunctions.hpp"
+#include "contact/ContactSystem.hpp"
 #include "driver/Decomposition.hpp"
 #include "element/ElementKinematics.hpp"
 #include "material/MaterialLibrary.hpp"
@@ -339,6 +338,7 @@ void Solver::setupNodeSweep()
       late[size_t(n)] = char(late[size_t(n)] | !_dd->owned[size_t(n)]);
   }
   _sweep = makeNodeSweep(_elems, _groups, _nodes, cornerGather(_deck) ? _corners.chunks : 1, late);
+  _sweep_nodes = _dd ? long(allReduceSum((long long)_sweep.early_nodes, _comm)) : _sweep.early_nodes;
 }
 
 void Solver::setupSets()

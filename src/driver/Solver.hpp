@@ -94,6 +94,8 @@ public:
   /// \brief Step 12 inside step 6 (inactive with numerics.node_update separate, or with
   /// atomic adds on more than one thread).
   const NodeSweep &nodeSweep() const { return _sweep; }
+  /// \brief Nodes step 6 integrates, over all ranks (0 without the sweep).
+  long sweepNodeCount() const { return _sweep_nodes; }
   /// \brief The common-plane contact, or null when the deck has no contact surfaces.
   const ContactSystem *contact() const { return _contact.get(); }
 
@@ -154,6 +156,7 @@ private:
   ElementFields _elems;
   NodeCorners _corners;
   NodeSweep _sweep; ///< step 12 of the early nodes inside step 6 (numerics.node_update fused)
+  long _sweep_nodes = 0; ///< its nodes over all ranks
   std::vector<ElementGroup> _groups;
   DeviceView<MaterialParams *> _materials;
   std::vector<MaterialParams> _materials_host;

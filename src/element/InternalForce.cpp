@@ -300,6 +300,7 @@ NodeSweep makeNodeSweep(const ElementFields &elems, const std::vector<ElementGro
   // each block's early nodes in ascending runs; the late ones in runs of at most 256
   std::vector<std::vector<Index>> early(static_cast<size_t>(blocks));
   std::vector<Index> late_runs, runs, offsets{0};
+  Index early_nodes = 0;
   for (Index n = 0; n < num_nodes; ++n)
     if (chunk_of[size_t(n)] >= 0 && !late[size_t(n)])
       early[size_t(block_of[size_t(last[size_t(n)])])].push_back(n);
@@ -309,11 +310,13 @@ NodeSweep makeNodeSweep(const ElementFields &elems, const std::vector<ElementGro
   {
     for (const Index n : block_nodes)
       addToRuns(runs, size_t(offsets.back()), n, num_nodes);
+    early_nodes += Index(block_nodes.size());
     offsets.push_back(Index(runs.size() / 2));
   }
   NodeSweep sweep;
   sweep.active = true;
   sweep.chunks = chunks;
+  sweep.early_nodes = early_nodes;
   sweep.block_base = toDevice(base, "sweep_block_base");
   sweep.block_runs = toDevice(offsets, "sweep_block_runs");
   sweep.runs = toDevicePairs(runs, "sweep_runs");

@@ -91,6 +91,7 @@ struct NodeSweep
   bool active = false;
   int chunks = 1;
   bool loads = false;
+  Index early_nodes = 0; ///< nodes step 6 integrates
   IndexView block_base;  ///< per (group, chunk), group-major: its first block
   IndexView block_runs;  ///< blocks + 1: each block's first run in `runs`
   DeviceView<Index * [2]> runs; ///< runs of consecutive early nodes [begin, end)

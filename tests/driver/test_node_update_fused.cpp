@@ -56,6 +56,9 @@ TEST_P(FusedNodeUpdate, GivesTheGaugesOfSeparateStepsBitForBit)
   const std::string gauges = readFile(apart + "/gauges.csv");
   ASSERT_GT(gauges.size(), 200u);
   EXPECT_EQ(readFile(fused + "/gauges.csv"), gauges);
+  // summary.json says how many nodes step 6 integrated: none with separate steps
+  EXPECT_NE(readFile(apart + "/summary.json").find("\"nodes_in_element_sweep\": 0,"),
+            std::string::npos);
   auto a = test::readCsv(apart + "/history.csv"), b = test::readCsv(fused + "/history.csv");
   ASSERT_EQ(a["time"], b["time"]);
   ASSERT_GT(a["time"].size(), 2u);
