@@ -13,6 +13,9 @@ the median of the per-round ratio to the first binary (same benchmark name, or w
 trailing "General" dropped), and the minimum and 10th percentile over every repetition of
 every round: the host's noise only ever slows a run down, so these show what the code does on
 a quiet machine, where the medians show what this host gave. Plain python3, no packages.
+
+With CSV=FILE in the environment, every repetition is also appended to FILE (columns threads,
+round, binary, benchmark, ns_per_elem_cycle) for perf/plot_cycle.py.
 """
 import collections
 import os
@@ -32,6 +35,9 @@ def main():
         sys.exit(__doc__)
     rounds, threads, binaries = int(args[0]), args[1], args[2:]
     env = dict(os.environ, OMP_NUM_THREADS=threads, OMP_PROC_BIND="spread", OMP_PLACES="threads")
+    csv = open(os.environ["CSV"], "a") if os.environ.get("CSV") else None
+    if csv and csv.tell() == 0:
+        csv.write("threads,round,binary,benchmark,ns_per_elem_cycle\n")
     runs = collections.defaultdict(dict)  # (binary, benchmark) -> round -> median
     every = collections.defaultdict(list)  # (binary, benchmark) -> every repetition
     for r in range(rounds):
@@ -47,6 +53,8 @@ def main():
             for name, v in sorted(values.items()):
                 runs[(b, name)][r] = statistics.median(v)
                 every[(b, name)] += v
+                for x in v if csv else []:
+                    csv.write(f"{threads},{r + 1},{b},{name},{x}\n")
                 cells.append(f"{name[3:]} {statistics.median(v):.1f}")
             load = open("/proc/loadavg").read().split()[0]
             print(f"round {r + 1} T{threads} {b}: {'  '.join(cells)}  (load {load})", flush=True)
