@@ -36,6 +36,15 @@ inline std::map<std::string, std::vector<double>> readCsv(const std::string &pat
   return cols;
 }
 
+/// \brief The whole text of a file ("" if it cannot be read).
+inline std::string readText(const std::string &path)
+{
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 /// \brief Runs the scpdyn binary; returns its exit status, stderr text in `err`.
 inline int runBinary(const std::string &args, std::string *err = nullptr,
                      const std::string &env = "")
@@ -45,12 +54,7 @@ inline int runBinary(const std::string &args, std::string *err = nullptr,
   const std::string cmd = env + " " + SCPDYN_BINARY + " " + args + " > /dev/null 2> " + err_file;
   const int rc = std::system(cmd.c_str());
   if (err)
-  {
-    std::ifstream in(err_file);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    *err = ss.str();
-  }
+    *err = readText(err_file);
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 

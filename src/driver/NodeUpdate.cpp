@@ -11,14 +11,14 @@ bool hasExternalLoads(const BoundaryConditions &bc, const Real gravity[3])
 
 void zeroForces(const NodeFields &nodes, const Real gravity[3], const bool loads)
 {
-  const NodeIntegrator node = nodeIntegrator(nodes, BoundaryConditions(), 0, IndexView(), gravity);
+  const NodeIntegrator node = nodeIntegrator(nodes, RealView(), 0, IndexView(), gravity);
   Kokkos::parallel_for(
       "zeroForces", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
       KOKKOS_LAMBDA(const Index n) { node.resetForces(n, loads); });
 }
 
-NodeIntegrator nodeIntegrator(const NodeFields &nodes, const BoundaryConditions &bcs, const Real dt,
-                              const IndexView &owned, const Real *g)
+NodeIntegrator nodeIntegrator(const NodeFields &nodes, const RealView &velocity_values,
+                              const Real dt, const IndexView &owned, const Real *g)
 {
   NodeIntegrator k;
   k.x = nodes.x;
@@ -28,7 +28,7 @@ NodeIntegrator nodeIntegrator(const NodeFields &nodes, const BoundaryConditions 
   k.prev_impulse = nodes.external_impulse;
   k.mass = nodes.mass;
   k.bc = nodes.bc;
-  k.vbc = bcs.velocity_current;
+  k.vbc = velocity_values;
   k.owned = owned;
   k.dt = dt;
   k.half_dt = 0.5 * dt;
@@ -93,7 +93,7 @@ NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Rea
                      const IndexView &owned, const bool loads, const Real *next_gravity,
                      const DeviceView<Index * [2]> *runs)
 {
-  const NodeIntegrator node = nodeIntegrator(nodes, bcs, dt, owned, next_gravity);
+  const NodeIntegrator node = nodeIntegrator(nodes, bcs.velocity_current, dt, owned, next_gravity);
   const bool clear = next_gravity != nullptr;
   if (dim == 1)
     return integrateNodes<1>(node, nodes.count, loads, clear, runs);

@@ -18,8 +18,9 @@ bool hasExternalLoads(const BoundaryConditions &bc, const Real gravity[3]);
 /// \brief Step 5: f_int = 0, and f_ext = m g if `loads` (hasExternalLoads()).
 void zeroForces(const NodeFields &nodes, const Real gravity[3], bool loads = true);
 
-/// \brief The NodeIntegrator of step 12 with time step dt (and next gravity g, or none).
-NodeIntegrator nodeIntegrator(const NodeFields &nodes, const BoundaryConditions &bc, Real dt,
+/// \brief The NodeIntegrator of step 12 with time step dt, the velocity constraints' values
+/// (BoundaryConditions::velocity_current) and the next gravity g (or none).
+NodeIntegrator nodeIntegrator(const NodeFields &nodes, const RealView &velocity_values, Real dt,
                               const IndexView &owned, const Real *g);
 
 /// \brief Step 12: integrate velocities and positions; returns kinetic energies, external

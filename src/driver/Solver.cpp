@@ -105,8 +105,8 @@ void Solver::stepElementSolvers()
   _controls.half_time = _time + 0.5 * _dt;
   if (_sweep.active) // step 12 of the early nodes, in this step's sweep
   {
-    _sweep.node = nodeIntegrator(_nodes, _bc, _dt, _dd ? _dd->owned_device : IndexView(),
-                                 _deck.gravity.data());
+    _sweep.node = nodeIntegrator(_nodes, _bc.velocity_current, _dt,
+                                 _dd ? _dd->owned_device : IndexView(), _deck.gravity.data());
     _sweep.loads = _external_loads;
   }
   const Real dt_elem =

@@ -47,17 +47,24 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
   k.half_dt = 0.5 * ctl.dt;
 
   Real dt_min = 0;
-  if (sweep.active) // one chunk a thread; after each block, step 12 on its early nodes
+  // one chunk a thread, its packs or elements in order; with the node sweep, after each block
+  // of them, step 12 on the block's early nodes
+  if (sweep.active || scatter == Scatter::Corners)
   {
     const ElementGroup grp = g;
-    const int chunks = sweep.chunks;
+    const int chunks = sweep.active ? sweep.chunks : corners.chunks;
     constexpr Index B = NodeSweep::kSweepBlock;
     Kokkos::parallel_reduce(
-        "elementSweep", Kokkos::RangePolicy<ExecSpace>(0, chunks),
+        "elementChunks", Kokkos::RangePolicy<ExecSpace>(0, chunks),
         KOKKOS_LAMBDA(const int c, Real &local_min) {
-          const Index end = chunkBegin(grp, chunks, c + 1);
+          const Index begin = chunkBegin(grp, chunks, c), end = chunkBegin(grp, chunks, c + 1);
+          if (!sweep.active)
+          {
+            k.range(begin, end, local_min);
+            return;
+          }
           Index b = sweep.block_base(group_index * chunks + c);
-          for (Index first = chunkBegin(grp, chunks, c); first < end; first += B, ++b)
+          for (Index first = begin; first < end; first += B, ++b)
           {
             k.range(first, end - first < B ? end : first + B, local_min);
             if (local_min < 0) // a failed element: the run stops after this step
@@ -65,18 +72,6 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
             else
               sweep.integrateBlock<ElementTraits<T>::dim>(b);
           }
-        },
-        Kokkos::Min<Real>(dt_min));
-    return dt_min;
-  }
-  if (scatter == Scatter::Corners) // one chunk a thread, its packs or elements in order
-  {
-    const ElementGroup grp = g;
-    const int chunks = corners.chunks;
-    Kokkos::parallel_reduce(
-        "elementChunks", Kokkos::RangePolicy<ExecSpace>(0, chunks),
-        KOKKOS_LAMBDA(const int c, Real &local_min) {
-          k.range(chunkBegin(grp, chunks, c), chunkBegin(grp, chunks, c + 1), local_min);
         },
         Kokkos::Min<Real>(dt_min));
     return dt_min;

@@ -27,14 +27,6 @@ inline std::string contactWorkDir(const std::string &name)
   return dir;
 }
 
-inline std::string readText(const std::string &path)
-{
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 /// Replace the first occurrence of `what` (which must exist) in `text`.
 inline std::string replaced(std::string text, const std::string &what, const std::string &with)
 {

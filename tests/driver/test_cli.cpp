@@ -100,10 +100,7 @@ boundary_conditions:
   std::string err;
   EXPECT_EQ(test::runBinary(deck + " -o " + out, &err), 3) << err;
   EXPECT_NE(err.find("inverted"), std::string::npos) << err;
-  std::ifstream summary(out + "/summary.json");
-  std::stringstream ss;
-  ss << summary.rdbuf();
-  EXPECT_NE(ss.str().find("\"failed\""), std::string::npos);
+  EXPECT_NE(test::readText(out + "/summary.json").find("\"failed\""), std::string::npos);
   EXPECT_TRUE(std::ifstream(out + "/fields.xmf").good());
   EXPECT_GT(test::readCsv(out + "/history.csv")["time"].size(), 1u);
 }
@@ -112,10 +109,9 @@ TEST(Cli, OneAndTwoThreadsAgree)
 {
   // a 2D scene with atomic scatter, which sums in another order on 2 threads, so gauges may
   // differ by round-off only: 1e-10 of each gauge's largest magnitude (issue 2)
-  std::ifstream in(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/wall_pulse_2d.yaml");
-  std::stringstream text;
-  text << in.rdbuf() << "numerics: {scatter: atomic}\n";
-  const std::string deck = test::writeWorkFile("wall_atomic.yaml", text.str());
+  const std::string text =
+      test::readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/wall_pulse_2d.yaml");
+  const std::string deck = test::writeWorkFile("wall_atomic.yaml", text + "numerics: {scatter: atomic}\n");
   const std::string o1 = std::string(SCPDYN_TEST_WORKDIR) + "/threads1";
   const std::string o2 = std::string(SCPDYN_TEST_WORKDIR) + "/threads2";
   ASSERT_EQ(test::runBinary(deck + " -o " + o1, nullptr, "OMP_NUM_THREADS=1 OMP_PROC_BIND=false"), 0);
@@ -141,10 +137,8 @@ TEST(Cli, OneAndTwoThreadsAgree)
 TEST(Cli, GatherScatterIsBitwiseThreadIndependent)
 {
   // the deterministic corner gather sums every node's corners in a fixed order
-  std::ifstream in(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/wall_pulse_2d.yaml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string text = ss.str();
+  std::string text =
+      test::readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/wall_pulse_2d.yaml");
   text += "numerics: {scatter: gather}\n";
   const std::string deck = test::writeWorkFile("wall_gather.yaml", text);
   const std::string o1 = std::string(SCPDYN_TEST_WORKDIR) + "/gather1";

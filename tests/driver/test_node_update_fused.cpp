@@ -10,8 +10,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace scpdyn
@@ -19,18 +17,12 @@ namespace scpdyn
 namespace
 {
 
-std::string readFile(const std::string &path)
-{
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using test::readText;
 
 /// The deck with numerics.node_update set, run by the binary on one thread; its output directory.
 std::string runDeck(const std::string &file, const std::string &mode)
 {
-  std::string text = readFile(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + file);
+  std::string text = readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + file);
   const std::string key = "numerics: {";
   const size_t at = text.find("\n" + key);
   if (at == std::string::npos)
@@ -53,11 +45,11 @@ TEST_P(FusedNodeUpdate, GivesTheGaugesOfSeparateStepsBitForBit)
 {
   const std::string apart = runDeck(GetParam(), "separate");
   const std::string fused = runDeck(GetParam(), "fused");
-  const std::string gauges = readFile(apart + "/gauges.csv");
+  const std::string gauges = readText(apart + "/gauges.csv");
   ASSERT_GT(gauges.size(), 200u);
-  EXPECT_EQ(readFile(fused + "/gauges.csv"), gauges);
+  EXPECT_EQ(readText(fused + "/gauges.csv"), gauges);
   // summary.json says how many nodes step 6 integrated: none with separate steps
-  EXPECT_NE(readFile(apart + "/summary.json").find("\"nodes_in_element_sweep\": 0,"),
+  EXPECT_NE(readText(apart + "/summary.json").find("\"nodes_in_element_sweep\": 0,"),
             std::string::npos);
   auto a = test::readCsv(apart + "/history.csv"), b = test::readCsv(fused + "/history.csv");
   ASSERT_EQ(a["time"], b["time"]);
@@ -93,6 +85,7 @@ TEST(FusedNodeUpdate, IntegratesTheInnerNodesInStepSix)
     for (size_t k = 0; k < runs.extent(0); ++k)
       early += runs(k, 1) - runs(k, 0);
     EXPECT_GT(early, 0) << file;
+    EXPECT_EQ(s.sweepNodeCount(), early) << file; // summary.json's nodes_in_element_sweep
     EXPECT_LT(early, s.nodes().count) << file; // the contact, pressure and constrained nodes
   }
 }

@@ -70,7 +70,7 @@ CycleEnd runSteps(const Solver &s, const NodeCorners &corners, NodeSweep sweep, 
   const Real *g = d.gravity.data();
   if (sweep.active)
   {
-    sweep.node = nodeIntegrator(n, bc, s.dt(), IndexView(), g);
+    sweep.node = nodeIntegrator(n, bc.velocity_current, s.dt(), IndexView(), g);
     sweep.loads = loads;
   }
   computeElementForces(s.groups(), test::gatherControls(s), n, el, s.materials(), corners, sweep);

@@ -2,6 +2,7 @@
 // defaults, the resolved deck parses back to the same Deck, and the error messages carry the
 // deck path, key path, line and a suggestion for typos. Values are compared exactly: the parser
 // and the resolved writer both go through exact decimal text, so nothing may be lost.
+#include "TestUtil.hpp"
 #include "input/Deck.hpp"
 
 #include <gtest/gtest.h>
@@ -112,13 +113,7 @@ std::string errorOf(const std::string &yaml, const std::string &path = "deck.yam
   return "(no error)";
 }
 
-std::string readFile(const std::string &file)
-{
-  std::ifstream in(file);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::readText;
 
 void expectSameDeck(const Deck &a, const Deck &b)
 {
@@ -341,7 +336,7 @@ TEST(DeckParser, ResolvedDeckRoundTrips)
     expectSameDeck(a, b);
     // resolving the resolved deck changes nothing but the source named in the header comment
     writeResolvedDeck(b, first + ".again");
-    const std::string t1 = readFile(first), t2 = readFile(first + ".again");
+    const std::string t1 = readText(first), t2 = readText(first + ".again");
     EXPECT_EQ(t1.substr(t1.find('\n')), t2.substr(t2.find('\n')));
   }
 }
@@ -400,7 +395,7 @@ TEST(DeckParser, MissingAndEmptyFiles)
 TEST(DeckParser, DocumentationExampleParses)
 {
   // the complete example at the top of docs/input.md must stay a valid deck
-  const std::string doc = readFile(std::string(SCPDYN_SOURCE_DIR) + "/docs/input.md");
+  const std::string doc = readText(std::string(SCPDYN_SOURCE_DIR) + "/docs/input.md");
   const auto begin = doc.find("```yaml\n");
   ASSERT_NE(begin, std::string::npos);
   const auto end = doc.find("```", begin + 8);

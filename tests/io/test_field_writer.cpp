@@ -1,5 +1,6 @@
 // FieldWriter: HDF5 contents read back with the C API, XDMF structure and references,
 // crash safety (a killed writer leaves a readable pair), and meshio's time-series reader.
+#include "TestUtil.hpp"
 #include "io/FieldWriter.hpp"
 
 #include <gtest/gtest.h>
@@ -25,13 +26,7 @@ std::string workDir(const std::string &name)
   return std::string(SCPDYN_TEST_WORKDIR) + "/io_field_" + name;
 }
 
-std::string slurp(const std::string &path)
-{
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using scpdyn::test::readText;
 
 /// Dataset read back as doubles (HDF5 converts int datasets) plus its shape.
 std::vector<double> readDataset(hid_t file, const std::string &name, std::vector<hsize_t> *dims)
@@ -253,7 +248,7 @@ XmlCheck scanXml(const std::string &xml)
 void checkXmf(const std::string &dir, const std::vector<FieldFrame> &frames)
 {
   const std::size_t num_frames = frames.size();
-  const XmlCheck x = scanXml(slurp(dir + "/fields.xmf"));
+  const XmlCheck x = scanXml(readText(dir + "/fields.xmf"));
   ASSERT_TRUE(x.well_formed) << x.error;
   EXPECT_EQ(std::size_t(x.uniform_grids), num_frames);
   EXPECT_EQ(std::size_t(x.tag_count.at("Grid")), num_frames + 1); // + the temporal collection
@@ -300,7 +295,7 @@ TEST(FieldWriter, MixedHexTetReadsBackExactly)
   // Mixed: XDMF code 9 (hex) + 8 nodes, code 6 (tet) + 4 nodes.
   checkH5(dir, m, frames, {9, 0, 1, 2, 3, 4, 5, 6, 7, 6, 4, 5, 6, 8}, {14});
   checkXmf(dir, frames);
-  const std::string xmf = slurp(dir + "/fields.xmf");
+  const std::string xmf = readText(dir + "/fields.xmf");
   EXPECT_NE(xmf.find("TopologyType=\"Mixed\" NumberOfElements=\"2\""), std::string::npos);
   EXPECT_NE(xmf.find("AttributeType=\"Tensor6\" Center=\"Cell\""), std::string::npos);
 }
@@ -312,7 +307,7 @@ TEST(FieldWriter, QuadMeshWithGivenDisplacement)
   const auto frames = writeFrames(dir, m, true);
   checkH5(dir, m, frames, {0, 1, 4, 3, 1, 2, 5, 4}, {2, 4});
   checkXmf(dir, frames);
-  const std::string xmf = slurp(dir + "/fields.xmf");
+  const std::string xmf = readText(dir + "/fields.xmf");
   EXPECT_NE(xmf.find("TopologyType=\"Quadrilateral\" NumberOfElements=\"2\""), std::string::npos);
   // The frame's own displacement is used, not a second derived one.
   std::size_t count = 0;
@@ -331,7 +326,7 @@ TEST(FieldWriter, PolylineUniformAndInMixedTopology)
   const auto frames = writeFrames(workDir("line"), m, false);
   checkH5(workDir("line"), m, frames, {0, 1, 1, 2}, {2, 2});
   checkXmf(workDir("line"), frames);
-  EXPECT_NE(slurp(workDir("line") + "/fields.xmf")
+  EXPECT_NE(readText(workDir("line") + "/fields.xmf")
                 .find("TopologyType=\"Polyline\" NumberOfElements=\"2\" NodesPerElement=\"2\""),
             std::string::npos);
 
