@@ -149,7 +149,7 @@ inline ElementControls controlsOf(const Solver &s, bool gather)
   c.dt = s.dt();
   c.half_time = s.time() + 0.5 * s.dt();
   c.geometry = d.geometry;
-  c.hourglass = d.hourglass_type == "stiffness" ? HourglassType::Stiffness : HourglassType::Viscous;
+  c.hourglass = hourglassTypeNamed(d.hourglass_type);
   c.hourglass_coefficient = d.hourglass_coefficient;
   c.q_linear = d.bulk_viscosity_linear;
   c.q_quadratic = d.bulk_viscosity_quadratic;

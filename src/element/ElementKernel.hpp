@@ -1,8 +1,8 @@
 #pragma once
 /// \file ElementKernel.hpp
-/// \brief The functor of step 6 (internal to InternalForce.cpp): the element step of one
-/// element (any type) or of a pack of kElementLanes hexes, loading and storing the element
-/// state and scattering the forces.
+/// \brief The functor of step 6 (InternalForce.cpp launches it; a test runs its pack and
+/// one-element paths side by side): the element step of one element (any type) or of a pack
+/// of kElementLanes hexes, loading and storing the element state and scattering the forces.
 #include "element/ElementSolver.hpp"
 #include "element/InternalForce.hpp"
 
@@ -59,8 +59,12 @@ struct ElementKernel
     for (int k = 0; k < kHistorySize; ++k)
       s.history[k] = history ? e_hist(e, k) : Real(0);
     for (int k = 0; k < kHourglassSize; ++k)
-      s.hourglass[k] = e_hgq(e, k);
+      s.hourglass[k] = k < kHourglassSlots ? e_hgq(e, k) : Real(0);
   }
+
+  /// Hourglass resistances an element of type T has (3 a mode): 12 for the hex, 3 for the
+  /// quad, none for the tet and the line, which moved all 12 each step before.
+  static constexpr int kHourglassSlots = 3 * HourglassModes<T>::count;
 
   /// Stores the state (the history slots from `history` unless it is null: the model uses
   /// none), books the hourglass work and scatters the forces of element e (or flags it in
@@ -85,7 +89,7 @@ struct ElementKernel
     if (history)
       for (int k = 0; k < kHistorySize; ++k)
         e_hist(e, k) = history[k];
-    for (int k = 0; k < kHourglassSize; ++k)
+    for (int k = 0; k < kHourglassSlots; ++k)
       e_hgq(e, k) = s.hourglass[k];
     scatterForces(e, r.force);
     local_min = r.stable_dt < local_min ? r.stable_dt : local_min;
@@ -364,6 +368,41 @@ struct ElementKernel
   }
 #endif
 };
+
+/// \brief The kernel of step 6 for elements of type T on these fields.
+template <ElementType T, bool Axi>
+ElementKernel<T, Axi> makeElementKernel(const ElementControls &ctl, Scatter scatter,
+                                        const NodeFields &nodes, const ElementFields &el,
+                                        const DeviceView<MaterialParams *> &materials,
+                                        const NodeCorners &corners)
+{
+  ElementKernel<T, Axi> k;
+  k.conn = el.conn;
+  k.row_pack = el.row_pack;
+  k.x_n = nodes.x;
+  k.v_n = nodes.v;
+  k.f_atomic = nodes.f_int;
+  k.f_plain = nodes.f_int;
+  k.corner_force = corners.corner_force;
+  k.shared_corners = corners.shared_corners;
+  k.corner_base = corners.corner_base;
+  k.mat_id = el.material;
+  k.e_mass = el.mass;
+  k.e_volume = el.volume;
+  k.e_energy = el.energy;
+  k.e_eps = el.plastic_strain;
+  k.e_q = el.q;
+  k.e_c = el.sound_speed;
+  k.e_hg = el.hourglass_energy;
+  k.e_stress = el.stress;
+  k.e_hist = el.history;
+  k.e_hgq = el.hourglass;
+  k.materials = materials;
+  k.ctl = ctl;
+  k.scatter = scatter;
+  k.half_dt = 0.5 * ctl.dt;
+  return k;
+}
 
 } // namespace element_kernel
 } // namespace scpdyn

@@ -13,6 +13,8 @@
 #include "core/Types.hpp"
 #include "element/ElementKinematics.hpp"
 
+#include <string>
+
 namespace scpdyn
 {
 
@@ -21,6 +23,12 @@ enum class HourglassType : int
   Viscous = 0,
   Stiffness = 1
 };
+
+/// The deck's `hourglass.type`: "stiffness", else the viscous form.
+inline HourglassType hourglassTypeNamed(const std::string &name)
+{
+  return name == "stiffness" ? HourglassType::Stiffness : HourglassType::Viscous;
+}
 
 template <ElementType T>
 struct HourglassModes

@@ -20,31 +20,8 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
                  const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
                  const NodeSweep &sweep, const int group_index)
 {
-  ElementKernel<T, Axi> k;
-  k.conn = el.conn;
-  k.row_pack = el.row_pack;
-  k.x_n = nodes.x;
-  k.v_n = nodes.v;
-  k.f_atomic = nodes.f_int;
-  k.f_plain = nodes.f_int;
-  k.corner_force = corners.corner_force;
-  k.shared_corners = corners.shared_corners;
-  k.corner_base = corners.corner_base;
-  k.mat_id = el.material;
-  k.e_mass = el.mass;
-  k.e_volume = el.volume;
-  k.e_energy = el.energy;
-  k.e_eps = el.plastic_strain;
-  k.e_q = el.q;
-  k.e_c = el.sound_speed;
-  k.e_hg = el.hourglass_energy;
-  k.e_stress = el.stress;
-  k.e_hist = el.history;
-  k.e_hgq = el.hourglass;
-  k.materials = materials;
-  k.ctl = ctl;
-  k.scatter = scatter;
-  k.half_dt = 0.5 * ctl.dt;
+  const ElementKernel<T, Axi> k =
+      element_kernel::makeElementKernel<T, Axi>(ctl, scatter, nodes, el, materials, corners);
 
   Real dt_min = 0;
   // one chunk a thread, its packs or elements in order; with the node sweep, after each block

@@ -85,6 +85,7 @@ inline ElementControls gatherControls(const Solver &s)
   ctl.dt = s.dt();
   ctl.half_time = s.time() + 0.5 * s.dt();
   ctl.geometry = d.geometry;
+  ctl.hourglass = hourglassTypeNamed(d.hourglass_type);
   ctl.hourglass_coefficient = d.hourglass_coefficient;
   ctl.q_linear = d.bulk_viscosity_linear;
   ctl.q_quadratic = d.bulk_viscosity_quadratic;
