@@ -1,7 +1,8 @@
 // Test entry point: MPI and Kokkos are initialised once for every test of the executable.
+#include "parallel/Mpi.hpp"
+
 #include <Kokkos_Core.hpp>
 #include <gtest/gtest.h>
-#include <mpi.h>
 
 #include <cstdlib>
 
@@ -11,11 +12,10 @@ int main(int argc, char **argv)
   // it; Kokkos' warning about the unset variable on stdout was then read as three extra "tests"
   // that ran nothing. (OpenMP has read its environment already: this changes no binding.)
   setenv("OMP_PROC_BIND", "false", 0);
-  MPI_Init(&argc, &argv);
+  scpdyn::MpiSession mpi(argc, argv); // finalised after Kokkos, when main returns
   Kokkos::initialize(argc, argv);
   ::testing::InitGoogleTest(&argc, argv);
   const int result = RUN_ALL_TESTS();
   Kokkos::finalize();
-  MPI_Finalize();
   return result;
 }

@@ -13,6 +13,10 @@
 #include <mpi.h>
 
 #include <array>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <system_error>
 #include <vector>
 
 namespace scpdyn
@@ -20,6 +24,13 @@ namespace scpdyn
 
 /// \brief Initialises MPI on construction unless it already is, and finalises it on destruction
 /// only if this object initialised it. Create it first in main(), before Kokkos.
+///
+/// A process started without mpirun (a singleton) gets its own Open MPI session directory
+/// (`OMPI_MCA_orte_tmpdir_base`, a fresh directory under $TMPDIR or /tmp, removed at the end)
+/// unless the variable is set already: Open MPI 4 singletons that start at the same moment race
+/// to create the shared /tmp/ompi.<host>.<uid> and the loser aborts in MPI_Init ("A call to
+/// mkdir was unable to create the desired directory ... File exists", open-mpi/ompi#8510),
+/// which ctest -j2 and a sweep of runs both do. Other MPI libraries ignore the variable.
 class MpiSession
 {
 public:
@@ -29,6 +40,7 @@ public:
     MPI_Initialized(&initialised);
     if (!initialised)
     {
+      useOwnSessionDirectory();
       MPI_Init(&argc, &argv);
       _owner = true;
     }
@@ -39,12 +51,36 @@ public:
     MPI_Finalized(&finalised);
     if (_owner && !finalised)
       MPI_Finalize();
+    if (!_session_dir.empty())
+    {
+      std::error_code ignored; // a leftover directory in /tmp is no reason to fail a run
+      std::filesystem::remove_all(_session_dir, ignored);
+    }
   }
   MpiSession(const MpiSession &) = delete;
   MpiSession &operator=(const MpiSession &) = delete;
 
 private:
+  void useOwnSessionDirectory()
+  {
+    // started by a launcher (mpirun, srun): it owns the session directory. A singleton's own
+    // MPI_Init sets PMIX_RANK and OMPI_MCA_ess=singleton, which its child processes inherit.
+    const char *ess = std::getenv("OMPI_MCA_ess");
+    const bool singleton_parent = ess && std::string(ess) == "singleton";
+    const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") ||
+                          ((std::getenv("PMIX_RANK") || std::getenv("PMI_RANK")) && !singleton_parent);
+    if (launched || std::getenv("OMPI_MCA_orte_tmpdir_base"))
+      return;
+    const char *tmp = std::getenv("TMPDIR");
+    std::string path = std::string(tmp && *tmp ? tmp : "/tmp") + "/scpdyn-mpi-XXXXXX";
+    if (!mkdtemp(path.data()))
+      return; // Open MPI's default then, as before
+    _session_dir = path;
+    setenv("OMPI_MCA_orte_tmpdir_base", path.c_str(), 1);
+  }
+
   bool _owner = false;
+  std::string _session_dir;
 };
 
 /// \brief True between MPI_Init and MPI_Finalize.
