@@ -141,18 +141,10 @@ inline KernelExtras makeKernelExtras(const Solver &s)
   return k;
 }
 
-/// \brief The element controls the Solver would use this cycle (deck defaults).
+/// \brief The element controls the Solver would use this cycle, with the given assembly.
 inline ElementControls controlsOf(const Solver &s, bool gather)
 {
-  const Deck &d = s.deck();
-  ElementControls c;
-  c.dt = s.dt();
-  c.half_time = s.time() + 0.5 * s.dt();
-  c.geometry = d.geometry;
-  c.hourglass = hourglassTypeNamed(d.hourglass_type);
-  c.hourglass_coefficient = d.hourglass_coefficient;
-  c.q_linear = d.bulk_viscosity_linear;
-  c.q_quadratic = d.bulk_viscosity_quadratic;
+  ElementControls c = s.elementControls();
   c.gather = gather;
   return c;
 }

@@ -554,7 +554,8 @@ void Solver::setupInitialState()
       });
 
   _controls.geometry = _deck.geometry;
-  _controls.hourglass = hourglassTypeNamed(_deck.hourglass_type);
+  _controls.hourglass =
+      _deck.hourglass_type == "stiffness" ? HourglassType::Stiffness : HourglassType::Viscous;
   _controls.hourglass_coefficient = _deck.hourglass_coefficient;
   _controls.q_linear = _deck.bulk_viscosity_linear;
   _controls.q_quadratic = _deck.bulk_viscosity_quadratic;

@@ -101,8 +101,7 @@ void Solver::stepZeroForces()
 void Solver::stepElementSolvers()
 {
   ScopedStep t(_timers, "06_element_solvers");
-  _controls.dt = _dt;
-  _controls.half_time = _time + 0.5 * _dt;
+  _controls = elementControls();
   if (_sweep.active) // step 12 of the early nodes, in this step's sweep
   {
     _sweep.node = nodeIntegrator(_nodes, _bc.velocity_current, _dt,

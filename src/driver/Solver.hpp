@@ -68,6 +68,14 @@ public:
 
   Real time() const { return _time; }
   Real dt() const { return _dt; }
+  /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
+  ElementControls elementControls() const
+  {
+    ElementControls c = _controls;
+    c.dt = _dt;
+    c.half_time = _time + 0.5 * _dt;
+    return c;
+  }
   long cycles() const { return _cycle; }
   const Deck &deck() const { return _deck; }
   /// \brief This rank's mesh (the whole mesh on one rank).

@@ -13,8 +13,6 @@
 #include "core/Types.hpp"
 #include "element/ElementKinematics.hpp"
 
-#include <string>
-
 namespace scpdyn
 {
 
@@ -23,12 +21,6 @@ enum class HourglassType : int
   Viscous = 0,
   Stiffness = 1
 };
-
-/// The deck's `hourglass.type`: "stiffness", else the viscous form.
-inline HourglassType hourglassTypeNamed(const std::string &name)
-{
-  return name == "stiffness" ? HourglassType::Stiffness : HourglassType::Viscous;
-}
 
 template <ElementType T>
 struct HourglassModes

@@ -77,18 +77,10 @@ inline NodeFields copyNodeState(const NodeFields &nodes)
   return copy;
 }
 
-/// The solver's deck and step as the element controls of the corner gather.
+/// The solver's element controls for its next step, as the corner gather's.
 inline ElementControls gatherControls(const Solver &s)
 {
-  const Deck &d = s.deck();
-  ElementControls ctl;
-  ctl.dt = s.dt();
-  ctl.half_time = s.time() + 0.5 * s.dt();
-  ctl.geometry = d.geometry;
-  ctl.hourglass = hourglassTypeNamed(d.hourglass_type);
-  ctl.hourglass_coefficient = d.hourglass_coefficient;
-  ctl.q_linear = d.bulk_viscosity_linear;
-  ctl.q_quadratic = d.bulk_viscosity_quadratic;
+  ElementControls ctl = s.elementControls();
   ctl.gather = true;
   return ctl;
 }
