@@ -3,8 +3,8 @@
 // real time per element per call. Run once per thread count (OMP_NUM_THREADS).
 #include "bench_common.hpp"
 
-#include "driver/NodeUpdate.hpp"
-#include "element/InternalForce.hpp"
+#include "integrate/NodeUpdate.hpp"
+#include "element/ElementForces.hpp"
 
 namespace
 {
@@ -37,7 +37,7 @@ void BM_HexKernelAtomic(benchmark::State &state)
   for (auto _ : state)
   {
     const Real dt = computeElementForces(k.solver.groups(), ctl, k.solver.nodes(),
-                                         k.solver.elements(), k.extras.materials, k.extras.corners);
+                                         k.solver.elements(), k.extras.materials, k.extras.corners).dt;
     benchmark::DoNotOptimize(dt);
   }
   setCounters(state, k.solver.elements().count);
@@ -52,7 +52,7 @@ void BM_HexKernelCorners(benchmark::State &state)
   for (auto _ : state)
   {
     const Real dt = computeElementForces(k.solver.groups(), ctl, k.solver.nodes(),
-                                         k.solver.elements(), k.extras.materials, k.extras.corners);
+                                         k.solver.elements(), k.extras.materials, k.extras.corners).dt;
     benchmark::DoNotOptimize(dt);
   }
   setCounters(state, k.solver.elements().count);
@@ -78,7 +78,7 @@ void BM_HexKernelGather(benchmark::State &state)
   for (auto _ : state)
   {
     const Real dt = computeElementForces(k.solver.groups(), ctl, k.solver.nodes(),
-                                         k.solver.elements(), k.extras.materials, k.extras.corners);
+                                         k.solver.elements(), k.extras.materials, k.extras.corners).dt;
     gatherCornerForces(k.solver.nodes(), k.extras.corners);
     Kokkos::fence();
     benchmark::DoNotOptimize(dt);

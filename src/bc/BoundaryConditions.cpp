@@ -126,4 +126,17 @@ void applyNodeForces(const BoundaryConditions &bc, const NodeFields &nodes)
       });
 }
 
+void declareLateNodes(const BoundaryConditions &bc, LateNodes &late)
+{
+  late.declare("node forces", bc.force_node);
+  auto face = Kokkos::create_mirror_view_and_copy(HostSpace(), bc.pressure_face);
+  auto face_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), bc.pressure_face_nodes);
+  std::vector<Index> nodes;
+  for (size_t f = 0; f < face.extent(0); ++f) // (1D: the element's other node too)
+    for (size_t a = 0; a < face.extent(1) && Index(a) < std::max<Index>(face_nodes(f), 2); ++a)
+      if (face(f, a) >= 0)
+        nodes.push_back(face(f, a));
+  late.declare("face pressure", nodes);
+}
+
 } // namespace scpdyn

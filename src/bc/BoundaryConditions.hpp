@@ -5,6 +5,7 @@
 /// evaluated on the host once per cycle and copied to small device arrays.
 #include "core/Fields.hpp"
 #include "input/Deck.hpp"
+#include "integrate/LateNodes.hpp"
 
 namespace scpdyn
 {
@@ -46,5 +47,10 @@ void applyFaceLoads(const BoundaryConditions &bc, const NodeFields &nodes, Real 
                     Geometry2D geometry);
 /// \brief Step 11: nodal forces into f_ext.
 void applyNodeForces(const BoundaryConditions &bc, const NodeFields &nodes);
+
+/// \brief Steps 10 and 11 act on nodes after step 6: the nodes of the pressure faces (in 1D
+/// the element's other node too) and of the nodal forces (integrate/LateNodes.hpp). The
+/// velocity constraints are imposed inside step 12 and need no declaration.
+void declareLateNodes(const BoundaryConditions &bc, LateNodes &late);
 
 } // namespace scpdyn

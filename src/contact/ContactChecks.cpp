@@ -32,7 +32,7 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
 {
   const CommonPlaneData cp = _cp;
   auto used = _faces.nodes_used;
-  auto v = nodes.v, f_int = nodes.f_int, fc = _fc, impulse = _impulse;
+  auto v = nodes.v, f_contact = nodes.f_contact, fc = _fc, impulse = _impulse;
   const int dim = _dim;
   const Index nused = Index(used.extent(0));
 
@@ -172,7 +172,7 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
         const Index k = used(i);
         for (int d = 0; d < dim; ++d)
         {
-          f_int(k, d) += fc(k, d); // internal to the system
+          f_contact(k, d) = fc(k, d);
           impulse(k, d) = fc(k, d) * dt;
         }
       });

@@ -91,6 +91,12 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   _cp = allocatePlanes(0);
 }
 
+void ContactSystem::declareLateNodes(LateNodes &late) const
+{
+  late.declare("contact", _faces.nodes_used);
+  late.declare("contact (1D face orientation)", _faces.back);
+}
+
 bool ContactSystem::searchDue(long cycle) const
 {
   return cycle == 0 || (_search_interval > 0 && cycle % _search_interval == 0);

@@ -61,14 +61,19 @@ public:
   /// \brief Step 3: on search cycles, half-step face geometry and sorting bins.
   void sortIntoBins(const NodeFields &nodes, Real dt, long cycle);
   /// \brief Step 9: detection on search cycles, then every CP's force (sub-steps A-E), scattered
-  /// atomically to a contact-force field and added to nodes.f_int. Returns a failure naming a
+  /// atomically to a contact-force field and written to nodes.f_contact (its contact nodes;
+  /// the other entries are left alone, at zero unless step 10b wrote them). Returns a failure naming a
   /// CP when the contact diverged (contact/ContactChecks.hpp: a non-finite force or history, a
   /// joint closure past 2 apertures, energy created); the forces are then not applied and the
   /// CP histories are restored.
   ContactFailure computeForces(const NodeFields &nodes, const BoundaryConditions &bc, Real dt,
                                long cycle, Real time);
+  /// \brief Step 9 acts on the nodes of the contact faces (in 1D also on the node that orients
+  /// a point face) after step 6 (integrate/LateNodes.hpp).
+  void declareLateNodes(LateNodes &late) const;
   /// \brief Step 12: smallest explicit-contact time step (19) over the active explicit CPs, from
-  /// v^{n+1} (nodes.v after the update); `dt_element` is the element Courant step [s]. 1e300
+  /// v^{n+1} (nodes.v after the update); `dt_element`, the horizon of the predicted closure,
+  /// is the elements' own step of this cycle over all ranks (integrate/TimeStep.hpp) [s]. 1e300
   /// when no explicit CP limits.
   Real stableTimeStep(const NodeFields &nodes, const ElementFields &elements,
                       Real dt_element) const;

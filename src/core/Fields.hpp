@@ -8,13 +8,15 @@ namespace scpdyn
 {
 
 /// \brief Nodal fields. Forces are split so external work can be booked: f_int collects
-/// element (internal + hourglass) and later contact forces, f_ext body, node and face loads.
+/// element (internal + hourglass) forces, f_contact the contact forces, f_ext body, node and
+/// face loads. Step 12 integrates their sum.
 struct NodeFields
 {
   VectorView x0;    ///< initial coordinates [m]
   VectorView x;     ///< coordinates at the start of the cycle, x^n [m]
   VectorView v;     ///< velocity v^n [m/s]
-  VectorView f_int; ///< internal + hourglass (+ contact) forces [N]
+  VectorView f_int; ///< internal + hourglass forces [N]
+  VectorView f_contact; ///< contact forces of step 9 [N] (empty without contact surfaces)
   VectorView f_ext; ///< external forces [N]
   VectorView external_impulse; ///< last step's (f_ext + constraint reaction) dt [N s]
   RealView mass;    ///< lumped mass [kg] (per metre in plane strain, per radian axisymmetric)

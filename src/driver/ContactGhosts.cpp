@@ -43,7 +43,8 @@ void Solver::setupContactGhosts()
 
 void Solver::ensureNodeCapacity(Index count)
 {
-  // ghost nodes live after the local ones in x, v, f_int, f_ext, mass and bc; the Views grow
+  // ghost nodes live after the local ones in x, v, f_int, f_ext, f_contact, mass and bc; the
+  // Views grow
   // (by half again) when a search needs more, and never shrink
   if (Index(_nodes.x.extent(0)) >= count)
     return;
@@ -58,6 +59,8 @@ void Solver::ensureNodeCapacity(Index count)
   grow(_nodes.v);
   grow(_nodes.f_int);
   grow(_nodes.f_ext);
+  if (_nodes.f_contact.extent(0) != 0)
+    grow(_nodes.f_contact);
   grow(_nodes.bc);
   RealView mass(std::string(_nodes.mass.label()), n);
   Kokkos::deep_copy(Kokkos::subview(mass, std::make_pair(size_t(0), size_t(_nodes.mass.extent(0)))),

@@ -94,7 +94,6 @@ void Solver::finishDecomposition()
     h(n) = _dd->owned[n];
   Kokkos::deep_copy(_dd->owned_device, h);
   const size_t n = size_t(_nodes.count);
-  _dd->f_int_after_7 = VectorView("f_int_after_7", n);
   _dd->f_contact = VectorView("f_contact_partial", n);
   _dd->f_load = VectorView("f_load_partial", n);
 }
@@ -147,50 +146,12 @@ void Solver::collectiveCheck(const std::string &local_error) const
   throw SimulationError(message);
 }
 
-void Solver::reduceNodeSums(NodeSums &sums, Real *dt_min) const
-{
-  // one all-gather; the sums are added in rank order (same bits on every rank), the minimum
-  // is exact
-  const int n = 7;
-  Real mine[n] = {sums.kinetic,     sums.kinetic_mid, sums.external_work, sums.momentum[0],
-                  sums.momentum[1], sums.momentum[2], dt_min ? *dt_min : 0.0};
-  std::vector<Real> all(size_t(n) * size_t(_num_ranks));
-  MPI_Allgather(mine, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, _comm);
-  Real total[n] = {0, 0, 0, 0, 0, 0, 0};
-  Real least = mine[6];
-  for (int r = 0; r < _num_ranks; ++r)
-  {
-    for (int i = 0; i < n - 1; ++i)
-      total[i] += all[size_t(r * n + i)];
-    least = std::min(least, all[size_t(r * n + n - 1)]);
-  }
-  sums.kinetic = total[0];
-  sums.kinetic_mid = total[1];
-  sums.external_work = total[2];
-  for (int i = 0; i < 3; ++i)
-    sums.momentum[i] = total[3 + i];
-  if (dt_min)
-    *dt_min = least;
-}
-
 void Solver::stepExchangeSharedNodeForces()
 {
   if (!_dd)
     return;
   ScopedStep t(_timers, "07_shared_node_forces");
   _dd->halo->sum(_nodes.f_int);
-  if (_contact)
-  {
-    auto shared = _dd->shared_nodes;
-    auto f = _nodes.f_int, saved = _dd->f_int_after_7;
-    Kokkos::parallel_for(
-        "scpdyn::comm::saveSharedForces", Kokkos::RangePolicy<ExecSpace>(0, Index(shared.extent(0))),
-        KOKKOS_LAMBDA(const Index s) {
-          const Index k = shared(s);
-          for (int d = 0; d < 3; ++d)
-            saved(k, d) = f(k, d);
-        });
-  }
 }
 
 void Solver::stepExchangeLoadPartials()
@@ -202,10 +163,11 @@ void Solver::stepExchangeLoadPartials()
   const Index ns = Index(shared.extent(0));
   if (_contact)
   {
-    // contact: f_int = (complete internal force) + (contact force summed over the copies),
-    // the serial formula, with the same bits on every copy
+    // contact: f_contact = the contact force summed over the copies, the same bits on every
+    // copy; the partials come from the contact's own field, which holds zero at a node this
+    // rank's contact does not touch (f_contact there holds the last cycle's sum)
     auto fc = _contact->nodalForces();
-    auto part = _dd->f_contact, saved = _dd->f_int_after_7, f = _nodes.f_int;
+    auto part = _dd->f_contact, f = _nodes.f_contact;
     Kokkos::parallel_for(
         "scpdyn::comm::packContactPartials", Kokkos::RangePolicy<ExecSpace>(0, ns),
         KOKKOS_LAMBDA(const Index s) {
@@ -219,7 +181,7 @@ void Solver::stepExchangeLoadPartials()
         KOKKOS_LAMBDA(const Index s) {
           const Index k = shared(s);
           for (int d = 0; d < 3; ++d)
-            f(k, d) = saved(k, d) + part(k, d);
+            f(k, d) = part(k, d);
         });
   }
   if (!_bc.pressure_value.empty())

@@ -26,10 +26,9 @@ struct SolverDecomposition
   std::vector<Index> output_cell;
   std::unique_ptr<NodeHalo> halo;
   IndexView shared_nodes; ///< local ids of the shared nodes
-  /// Step 10b: f_int of the shared nodes after step 7 (the complete internal force), and the
-  /// partial contact / pressure forces of this rank, summed over the copies in their own arrays
-  /// so no force is counted twice.
-  VectorView f_int_after_7, f_contact, f_load;
+  /// Step 10b: the partial contact / pressure forces of this rank, summed over the copies in
+  /// their own arrays so no force is counted twice.
+  VectorView f_contact, f_load;
   /// Contact (steps 4 and 8): the ghost faces and nodes, this rank's own contact faces and the
   /// shared nodes on the host.
   std::unique_ptr<GhostFaces> ghosts;

@@ -209,6 +209,8 @@ void Solver::setupFields()
   _nodes.v = VectorView("v", size_t(num_nodes));
   _nodes.f_int = VectorView("f_int", size_t(num_nodes));
   _nodes.f_ext = VectorView("f_ext", size_t(num_nodes));
+  if (!_deck.contact.surfaces.empty())
+    _nodes.f_contact = VectorView("f_contact", size_t(num_nodes));
   _nodes.external_impulse = VectorView("external_impulse", size_t(num_nodes));
   _nodes.mass = RealView("node_mass", size_t(num_nodes));
   _nodes.bc = DeviceView<int * [3]>("node_bc", size_t(num_nodes));
@@ -308,36 +310,21 @@ void Solver::setupNodeSweep()
 #endif
   if (_deck.node_update != "fused" || !ordered)
     return;
-  const Index num_nodes = _nodes.count;
-  std::vector<char> late(static_cast<size_t>(num_nodes), 0);
-  auto force_node = Kokkos::create_mirror_view_and_copy(HostSpace(), _bc.force_node);
-  for (size_t k = 0; k < force_node.extent(0); ++k)
-    late[size_t(force_node(k))] = 1;
-  auto face = Kokkos::create_mirror_view_and_copy(HostSpace(), _bc.pressure_face);
-  auto face_nodes = Kokkos::create_mirror_view_and_copy(HostSpace(), _bc.pressure_face_nodes);
-  for (size_t f = 0; f < face.extent(0); ++f) // (1D: the element's other node too)
-    for (size_t a = 0; a < face.extent(1) && Index(a) < std::max<Index>(face_nodes(f), 2); ++a)
-      if (face(f, a) >= 0)
-        late[size_t(face(f, a))] = 1;
+  // every room that acts on nodes between steps 6 and 12 declares them (LateNodes.hpp)
+  LateNodes late(_nodes.count);
+  declareLateNodes(_bc, late);
   if (_contact)
-  {
-    auto used = Kokkos::create_mirror_view_and_copy(HostSpace(), _contact->faces().nodes_used);
-    for (size_t k = 0; k < used.extent(0); ++k)
-      late[size_t(used(k))] = 1;
-    auto back = Kokkos::create_mirror_view_and_copy(HostSpace(), _contact->faces().back);
-    for (size_t k = 0; k < back.extent(0); ++k) // 1D: the node that orients a point face
-      if (back(k) >= 0 && back(k) < num_nodes)
-        late[size_t(back(k))] = 1;
-  }
+    _contact->declareLateNodes(late);
   if (_dd) // step 7 sums the shared nodes; a node this rank does not own is counted elsewhere
   {
-    auto shared = Kokkos::create_mirror_view_and_copy(HostSpace(), _dd->shared_nodes);
-    for (size_t k = 0; k < shared.extent(0); ++k)
-      late[size_t(shared(k))] = 1;
-    for (Index n = 0; n < num_nodes; ++n)
-      late[size_t(n)] = char(late[size_t(n)] | !_dd->owned[size_t(n)]);
+    late.declare("shared-node exchange", _dd->shared_nodes);
+    std::vector<char> not_owned(_dd->owned.size());
+    for (size_t n = 0; n < not_owned.size(); ++n)
+      not_owned[n] = char(!_dd->owned[n]);
+    late.declareFlagged("nodes of other ranks", not_owned);
   }
-  _sweep = makeNodeSweep(_elems, _groups, _nodes, cornerGather(_deck) ? _corners.chunks : 1, late);
+  _sweep = makeNodeSweep(_elems, _groups, _nodes, cornerGather(_deck) ? _corners.chunks : 1,
+                         late.mask());
   _sweep_nodes = _dd ? long(allReduceSum((long long)_sweep.early_nodes, _comm)) : _sweep.early_nodes;
 }
 
@@ -561,7 +548,7 @@ void Solver::setupInitialState()
   _controls.q_quadratic = _deck.bulk_viscosity_quadratic;
   _controls.gather = cornerGather(_deck);
 
-  Real dt_elem = initialElementTimeStep(_groups, _deck.geometry, _nodes, _elems, _materials);
+  const Real dt_elem = initialElementTimeStep(_groups, _deck.geometry, _nodes, _elems, _materials);
   if (_dd)
   {
     // the lowest failing rank names its element (global id); every rank stops alike
@@ -575,15 +562,14 @@ void Solver::setupInitialState()
       throw InputError(_deck.path + ": parts: element " + std::to_string(element) +
                        " is inverted or degenerate");
     }
-    dt_elem = allReduceMin(dt_elem, _comm);
   }
   if (!(dt_elem > 0))
     throw InputError(_deck.path + ": parts: element " + std::to_string(Index(-dt_elem) - 1) +
                      " is inverted or degenerate");
-  _dt_next = std::min(_deck.courant * dt_elem, _deck.dt_max);
   NodeSums s = nodeSums(_nodes, _dd ? _dd->owned_device : IndexView());
-  if (_dd)
-    reduceNodeSums(s);
+  TimeStepLimits first;
+  first.element = dt_elem;
+  _dt_next = nextTimeStep(first, timeStepControls(), s, _dd ? _comm : MPI_COMM_NULL);
   _last_sums = s;
   _kinetic_mid = s.kinetic;
   _initial_energy = 0;

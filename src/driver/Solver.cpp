@@ -108,26 +108,26 @@ void Solver::stepElementSolvers()
                                  _dd ? _dd->owned_device : IndexView(), _deck.gravity.data());
     _sweep.loads = _external_loads;
   }
-  const Real dt_elem =
+  const ElementStepResult r =
       computeElementForces(_groups, _controls, _nodes, _elems, _materials, _corners, _sweep);
   if (_controls.gather)
     gatherCornerForces(_nodes, _corners);
   std::string error;
-  if (!(dt_elem > 0))
+  if (!r.ok())
   {
     std::ostringstream os;
-    if (std::isnan(dt_elem))
+    if (!r.finite)
       os << "non-finite element state at cycle " << _cycle << ", time " << _time;
     else
-      os << "element " << globalElement(meshElementOfDevice(Index(-dt_elem) - 1))
-         << " inverted at cycle " << _cycle << ", time " << _time << " s (dt " << _dt
+      os << "element " << globalElement(meshElementOfDevice(r.inverted)) << " inverted at cycle "
+         << _cycle << ", time " << _time << " s (dt " << _dt
          << " s): reduce time.courant or check the loading";
     error = os.str();
   }
   collectiveCheck(error); // every rank stops before the shared-node exchange
-  _dt_next = std::min(_deck.courant * dt_elem, _deck.dt_max);
-  if (_dd) // the contact limit (19) below takes the global element step
-    _dt_next = allReduceMin(_dt_next, _comm);
+  _limits.element = r.dt;
+  if (_check_sweep)
+    snapshotEarlyNodes(_nodes, _early_snapshot);
 }
 
 void Solver::stepFaceBoundaryConditions()
@@ -146,6 +146,8 @@ void Solver::stepNodeBoundaryConditions()
 void Solver::stepUpdateNodes()
 {
   ScopedStep t(_timers, "12_update_nodes");
+  if (_check_sweep)
+    checkEarlyNodes();
   updateVelocityValues(_bc, _time + _dt);
   _last_sums = updateNodes(_nodes, _bc, _dt, _deck.dimension,
                            _dd ? _dd->owned_device : IndexView(), _external_loads,
@@ -153,10 +155,12 @@ void Solver::stepUpdateNodes()
   if (_sweep.active) // the early nodes' sums, from step 6
     _last_sums += sweepSums(_sweep);
   _forces_zeroed = true;
-  if (_contact) // (19) for explicit contacts, from v^{n+1}; dt_el = the element Courant step
-    _dt_next = std::min(_dt_next, _contact->stableTimeStep(_nodes, _elems, _dt_next / _deck.courant));
-  if (_dd) // one collective: the sums over the ranks in rank order, and the global time step
-    reduceNodeSums(_last_sums, &_dt_next);
+  const MPI_Comm comm = _dd ? _comm : MPI_COMM_NULL;
+  _limits.contact = 1e300;
+  if (_contact && _contact->hasExplicit()) // (19), from v^{n+1}
+    _limits.contact = _contact->stableTimeStep(_nodes, _elems,
+                                               elementStep(_limits, timeStepControls(), comm));
+  _dt_next = nextTimeStep(_limits, timeStepControls(), _last_sums, comm);
   _external_work += _last_sums.external_work;
   _kinetic_mid = _last_sums.kinetic_mid;
   _energy_scale = std::max(_energy_scale, _last_sums.kinetic);
@@ -166,6 +170,19 @@ void Solver::stepUpdateNodes()
     os << "non-finite nodal velocities at cycle " << _cycle << ", time " << _time;
     throw SimulationError(os.str());
   }
+}
+
+void Solver::checkEarlyNodes() const
+{
+  std::string what;
+  const Index n = earlyNodeWrittenLate(_sweep, _nodes, _early_snapshot, _external_loads,
+                                       _deck.gravity.data(), &what);
+  std::string error;
+  if (n >= 0)
+    error = "node " + std::to_string(globalNode(n)) + " was integrated in step 6 and then " +
+            "changed before step 12 (" + what + ") by a room that did not declare it late " +
+            "(integrate/LateNodes.hpp) at cycle " + std::to_string(_cycle);
+  collectiveCheck(error);
 }
 
 long Solver::run(const std::string &output_dir)

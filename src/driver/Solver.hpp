@@ -5,8 +5,9 @@
 #include "bc/BoundaryConditions.hpp"
 #include "core/Fields.hpp"
 #include "core/Timers.hpp"
-#include "driver/NodeUpdate.hpp"
-#include "element/InternalForce.hpp"
+#include "element/ElementForces.hpp"
+#include "integrate/NodeUpdate.hpp"
+#include "integrate/TimeStep.hpp"
 #include "input/Deck.hpp"
 #include "mesh/HostMesh.hpp"
 
@@ -83,6 +84,7 @@ public:
   const NodeFields &nodes() const { return _nodes; }
   const ElementFields &elements() const { return _elems; }
   const std::vector<GaugeSlot> &gauges() const { return _gauges; }
+  const BoundaryConditions &boundaryConditions() const { return _bc; }
   const StepTimers &timers() const { return _timers; }
   /// \brief Wall-clock time spent in cycle() so far on this rank [s] (the steps' timers plus
   /// whatever runs between them).
@@ -138,7 +140,6 @@ private:
   void unifyNodeSet(std::vector<Index> &nodes) const;
   void stepExchangeLoadPartials(); // 10b
   void collectiveCheck(const std::string &local_error) const;
-  void reduceNodeSums(NodeSums &sums, Real *dt_min = nullptr) const;
   Index meshElementOfDevice(Index device) const;
 
   // the cycle's steps (numbers as in the paper)
@@ -153,6 +154,8 @@ private:
   void stepNodeBoundaryConditions();   // 11
   void stepUpdateNodes();              // 12
   void setupNodeSweep();
+  void checkEarlyNodes() const;
+  TimeStepControls timeStepControls() const { return {_deck.courant, _deck.dt_max}; }
 
   Deck _deck;
   HostMesh _mesh;
@@ -189,6 +192,9 @@ private:
   Real _time = 0;
   Real _dt = 0;
   Real _dt_next = 0;
+  bool _check_sweep = nodeSweepCheckEnabled(); ///< LateNodes.hpp's check mode
+  EarlyNodeSnapshot _early_snapshot;
+  TimeStepLimits _limits; ///< this cycle's limits on the next step, this rank
   long _cycle = 0;
   Real _external_work = 0;
   Real _kinetic_mid = 0;     ///< 1/2 sum m v^n.v^{n+1} of the last step

@@ -1,10 +1,10 @@
 #pragma once
 /// \file ElementKernel.hpp
-/// \brief The functor of step 6 (InternalForce.cpp launches it; a test runs its pack and
+/// \brief The functor of step 6 (element/ElementLaunch.hpp launches it; a test runs its pack and
 /// one-element paths side by side): the element step of one element (any type) or of a pack
 /// of kElementLanes hexes, loading and storing the element state and scattering the forces.
 #include "element/ElementSolver.hpp"
-#include "element/InternalForce.hpp"
+#include "element/ElementForces.hpp"
 
 namespace scpdyn
 {

@@ -3,7 +3,7 @@
 /// \brief The physics of one element for one step, as a device function that the kernel and
 /// the unit tests call.
 #include "element/Hourglass.hpp"
-#include "element/InternalForce.hpp"
+#include "element/ElementForces.hpp"
 #include "material/MaterialUpdate.hpp"
 
 namespace scpdyn

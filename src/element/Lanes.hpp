@@ -5,8 +5,9 @@
 /// hex8 elements at once, one per vector lane). Every lane does the scalar arithmetic in the
 /// scalar order, so a pack gives the bits of W scalar calls (IEEE +, -, *, / and sqrt are
 /// correctly rounded in vector registers too) where both are compiled alike: SCPDYN_NATIVE
-/// keeps -ffp-contract=off everywhere but in InternalForce.cpp, whose hexes all run as packs
-/// (chunks start on pack boundaries), so their bits do not depend on the thread count either.
+/// keeps -ffp-contract=off everywhere but in the files that instantiate the element kernels
+/// (ElementLaunch.hpp), whose hexes all run as packs (chunks start on pack boundaries), so
+/// their bits do not depend on the thread count either.
 /// The cube root is laneCbrt, vector arithmetic too.
 ///
 /// The pack is a GCC/Clang vector type, host only: device builds (and other compilers) use

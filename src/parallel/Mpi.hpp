@@ -12,6 +12,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <filesystem>
@@ -129,24 +130,38 @@ inline Real allReduceMax(Real value, MPI_Comm comm = MPI_COMM_WORLD)
   return out;
 }
 
-/// \brief Element-wise global sum of `n` values, added in ascending rank order (0 + v_0 + v_1
-/// + ...) after an all-gather. MPI_SUM leaves the order to the library; this way the result is
-/// bitwise the same on every rank and for every run with the same rank count (energies,
-/// momenta). Cost: n * size values per rank, fine for the handful of diagnostics per cycle.
-inline void allReduceSum(Real *values, int n, MPI_Comm comm = MPI_COMM_WORLD)
+/// \brief In one all-gather: the element-wise global sum of `n` values, added in ascending
+/// rank order (0 + v_0 + v_1 + ...), and the global minimum of `m` others. MPI_SUM leaves the
+/// order to the library; this way the sums are bitwise the same on every rank and for every run
+/// with the same rank count (energies, momenta); a minimum is exact in any order. Cost:
+/// (n + m) * size values per rank, fine for the handful of values of a cycle.
+inline void allReduceSumMin(Real *sums, int n, Real *mins, int m, MPI_Comm comm = MPI_COMM_WORLD)
 {
   const int size = mpiSize(comm);
-  if (size == 1 || n <= 0)
+  const int w = n + m;
+  if (size == 1 || w <= 0)
     return;
-  std::vector<Real> all(size_t(n) * size_t(size));
-  MPI_Allgather(values, n, MPI_DOUBLE, all.data(), n, MPI_DOUBLE, comm);
+  std::vector<Real> mine(static_cast<size_t>(w));
+  std::vector<Real> all(static_cast<size_t>(w) * static_cast<size_t>(size));
+  std::copy(sums, sums + n, mine.begin());
+  std::copy(mins, mins + m, mine.begin() + n);
+  MPI_Allgather(mine.data(), w, MPI_DOUBLE, all.data(), w, MPI_DOUBLE, comm);
   for (int i = 0; i < n; ++i)
   {
     Real s = 0;
     for (int r = 0; r < size; ++r)
-      s += all[size_t(r) * size_t(n) + size_t(i)];
-    values[i] = s;
+      s += all[size_t(r) * size_t(w) + size_t(i)];
+    sums[i] = s;
   }
+  for (int i = 0; i < m; ++i)
+    for (int r = 0; r < size; ++r)
+      mins[i] = std::min(mins[i], all[size_t(r) * size_t(w) + size_t(n + i)]);
+}
+
+/// \brief Element-wise global sum of `n` values in ascending rank order (allReduceSumMin()).
+inline void allReduceSum(Real *values, int n, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  allReduceSumMin(values, n, nullptr, 0, comm);
 }
 
 /// \brief Global sum of one value in ascending rank order (see the array version).

@@ -2,7 +2,7 @@
 // Shared by the tests of step 6 run on a solver's state: a 3D deck with row, general and tail
 // packs and two element groups, and copies of the state a step changes.
 #include "driver/Solver.hpp"
-#include "element/InternalForce.hpp"
+#include "element/ElementForces.hpp"
 
 #include <type_traits>
 

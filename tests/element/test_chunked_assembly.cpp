@@ -4,7 +4,7 @@
 // one-thread loop; and the shared nodes must be exactly those two chunks touch.
 #include "StepFixtures.hpp"
 #include "driver/Solver.hpp"
-#include "element/InternalForce.hpp"
+#include "element/ElementForces.hpp"
 #include "input/Deck.hpp"
 
 #include <gtest/gtest.h>

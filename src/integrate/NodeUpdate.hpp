@@ -1,10 +1,10 @@
 #pragma once
 /// \file NodeUpdate.hpp
 /// \brief Step 5 (zero forces) and step 12 (update nodes) of the cycle; the step on one node
-/// is NodeIntegrator (core/NodeIntegrator.hpp).
+/// is NodeIntegrator (integrate/NodeIntegrator.hpp).
 #include "bc/BoundaryConditions.hpp"
-#include "core/NodeIntegrator.hpp"
-#include "element/NodeSweep.hpp"
+#include "integrate/NodeIntegrator.hpp"
+#include "integrate/NodeSweep.hpp"
 
 namespace scpdyn
 {

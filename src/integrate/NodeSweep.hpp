@@ -2,9 +2,11 @@
 /// \file NodeSweep.hpp
 /// \brief Step 12 inside step 6: the nodes that nothing after the element step touches are
 /// integrated in the element sweep, right after their last element, while their x, v and
-/// f_int are still in cache (perf/README.md, change 25).
-#include "core/NodeIntegrator.hpp"
+/// f_int are still in cache, which saves step 12 reading them again from memory
+/// (perf/README.md).
+#include "element/ElementForces.hpp"
 #include "element/Lanes.hpp"
+#include "integrate/NodeIntegrator.hpp"
 
 namespace scpdyn
 {
@@ -79,12 +81,13 @@ inline void runFreeNodes(const NodeIntegrator &k, const Index begin, const Index
 #endif
 
 /// \brief Step 12 for the nodes that nothing after step 6 touches, done inside step 6's sweep
-/// (ElementKernel): after each block of kSweepBlock elements of a chunk, the nodes whose last
+/// as its after-block hook (element/ElementLaunch.hpp): after each block of kElementBlock
+/// elements of a chunk, the nodes whose last
 /// element (in the sweep's order) lies in that block are integrated while their x, v and f_int
 /// are still in cache, and step 12 itself runs over the other ("late") nodes only. A node is
 /// late if two chunks or two element groups touch it, if it has a velocity constraint, if a
 /// contact surface, a face pressure or a nodal force acts on it, or if it is shared between
-/// ranks or not owned. Built by makeNodeSweep() (element/InternalForce.hpp).
+/// ranks or not owned. Built by makeNodeSweep() (element/ElementForces.hpp).
 struct NodeSweep
 {
   static constexpr Index kSweepBlock = 64;
@@ -98,6 +101,22 @@ struct NodeSweep
   DeviceView<NodeSums *> block_sums; ///< per block: the sums of its nodes (this cycle)
   DeviceView<Index * [2]> late_runs; ///< runs of at most 256 late nodes, ascending
   NodeIntegrator node;
+
+  /// The after-block hook: block b's number of the first block of a chunk.
+  KOKKOS_INLINE_FUNCTION Index firstBlock(const int group_chunk) const
+  {
+    return block_base(group_chunk);
+  }
+  /// The after-block hook: step 12 on block b's early nodes, or, when an element of the chunk
+  /// failed, none of them (the run stops after step 6 with the state it had).
+  template <int Dim>
+  KOKKOS_INLINE_FUNCTION void afterBlock(const Index b, const bool failed) const
+  {
+    if (failed)
+      block_sums(b) = NodeSums();
+    else
+      integrateBlock<Dim>(b);
+  }
 
   /// Step 12 (with step 5 after it) on the early nodes of block b, which has no later element.
   template <int Dim>
@@ -124,5 +143,21 @@ struct NodeSweep
     block_sums(b) = s;
   }
 };
+
+/// \brief The node sweep of step 6 (NodeSweep) for `chunks` chunks (1 with one thread; the
+/// NodeCorners chunks with the corner gather). `late` (per node, nonzero) marks the nodes that
+/// something after step 6 touches (LateNodes::mask()); a node with a velocity constraint, or
+/// that two chunks or groups touch, is late too. The caller sets `loads` and the
+/// NodeIntegrator each cycle.
+NodeSweep makeNodeSweep(const ElementFields &elems, const std::vector<ElementGroup> &groups,
+                        const NodeFields &nodes, int chunks, std::vector<char> late);
+
+/// \brief Step 6 with step 12 of the early nodes in its sweep (computeElementForces() with the
+/// sweep as after-block hook; an inactive sweep leaves step 12 to updateNodes()).
+ElementStepResult computeElementForces(const std::vector<ElementGroup> &groups,
+                                       const ElementControls &ctl, const NodeFields &nodes,
+                                       const ElementFields &elems,
+                                       const DeviceView<MaterialParams *> &materials,
+                                       const NodeCorners &corners, const NodeSweep &sweep);
 
 } // namespace scpdyn

@@ -1,4 +1,4 @@
-#include "driver/NodeUpdate.hpp"
+#include "integrate/NodeUpdate.hpp"
 
 namespace scpdyn
 {
@@ -25,6 +25,7 @@ NodeIntegrator nodeIntegrator(const NodeFields &nodes, const RealView &velocity_
   k.v = nodes.v;
   k.f_int = nodes.f_int;
   k.f_ext = nodes.f_ext;
+  k.f_contact = nodes.f_contact;
   k.prev_impulse = nodes.external_impulse;
   k.mass = nodes.mass;
   k.bc = nodes.bc;
@@ -49,9 +50,9 @@ constexpr Index kNodeChunk = 256;
 #endif
 
 /// updateNodes() in dimension Dim over all nodes, or over the given runs.
-template <int Dim, bool Loads, bool Clear>
-NodeSums integrateNodes(const NodeIntegrator &node, const Index count,
-                        const DeviceView<Index * [2]> *given_runs)
+template <int Dim, bool Loads, bool Clear, bool Contact>
+NodeSums integrateAll(const NodeIntegrator &node, const Index count,
+                      const DeviceView<Index * [2]> *given_runs)
 {
   NodeSums sums;
   if (given_runs)
@@ -60,7 +61,7 @@ NodeSums integrateNodes(const NodeIntegrator &node, const Index count,
     Kokkos::parallel_reduce(
         "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, Index(runs.extent(0))),
         KOKKOS_LAMBDA(const Index r, NodeSums &s) {
-          node.run<Dim, Loads, Clear>(runs(r, 0), runs(r, 1), s);
+          node.run<Dim, Loads, Clear, Contact>(runs(r, 0), runs(r, 1), s);
         },
         Kokkos::Sum<NodeSums>(sums));
     return sums;
@@ -69,22 +70,32 @@ NodeSums integrateNodes(const NodeIntegrator &node, const Index count,
       "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, (count + kNodeChunk - 1) / kNodeChunk),
       KOKKOS_LAMBDA(const Index chunk, NodeSums &s) {
         const Index begin = chunk * kNodeChunk;
-        node.run<Dim, Loads, Clear>(begin, count - begin < kNodeChunk ? count : begin + kNodeChunk,
-                                    s);
+        node.run<Dim, Loads, Clear, Contact>(
+            begin, count - begin < kNodeChunk ? count : begin + kNodeChunk, s);
       },
       Kokkos::Sum<NodeSums>(sums));
   return sums;
+}
+
+template <int Dim, bool Contact>
+NodeSums integrateWithContact(const NodeIntegrator &node, const Index count, const bool loads,
+                        const bool clear, const DeviceView<Index * [2]> *runs)
+{
+  if (clear)
+    return loads ? integrateAll<Dim, true, true, Contact>(node, count, runs)
+                 : integrateAll<Dim, false, true, Contact>(node, count, runs);
+  return loads ? integrateAll<Dim, true, false, Contact>(node, count, runs)
+               : integrateAll<Dim, false, false, Contact>(node, count, runs);
 }
 
 template <int Dim>
 NodeSums integrateNodes(const NodeIntegrator &node, const Index count, const bool loads,
                         const bool clear, const DeviceView<Index * [2]> *runs)
 {
-  if (clear)
-    return loads ? integrateNodes<Dim, true, true>(node, count, runs)
-                 : integrateNodes<Dim, false, true>(node, count, runs);
-  return loads ? integrateNodes<Dim, true, false>(node, count, runs)
-               : integrateNodes<Dim, false, false>(node, count, runs);
+  // contact forces have their own field, read only where there is one
+  if (node.f_contact.extent(0) != 0)
+    return integrateWithContact<Dim, true>(node, count, loads, clear, runs);
+  return integrateWithContact<Dim, false>(node, count, loads, clear, runs);
 }
 
 } // namespace

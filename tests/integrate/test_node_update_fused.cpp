@@ -1,5 +1,5 @@
 // numerics.node_update: with `fused` (the default) step 6 integrates the nodes nothing after it
-// touches (element/NodeSweep.hpp) and step 12 the rest. On decks with contact (1D, 2D, 3D,
+// touches (integrate/NodeSweep.hpp) and step 12 the rest. On decks with contact (1D, 2D, 3D,
 // joints and sticky), face pressure, gravity, velocity constraints and merged parts, a whole
 // run must give the gauges of `separate` bit for bit, and the same energies to round-off (the
 // sums add the same terms in another order). One thread: face pressure and contact forces are

@@ -1,13 +1,13 @@
-// Step 12 inside step 6 (element/NodeSweep.hpp, numerics.node_update fused): after each block of
+// Step 12 inside step 6 (integrate/NodeSweep.hpp, numerics.node_update fused): after each block of
 // a chunk's elements, the nodes whose last element lies in it are integrated. The early nodes
 // must be exactly those one chunk touches and nothing marks late, each integrated after its
 // last element; and step 6 with the sweep, then step 12 on the late nodes, must leave x, v,
 // both forces and the impulses with the bits of step 6 followed by step 12 on every node, for
 // any chunk count, with and without loads, in 2D and 3D (the vector path and the scalar one).
-#include "StepFixtures.hpp"
-#include "driver/NodeUpdate.hpp"
+#include "element/StepFixtures.hpp"
+#include "integrate/NodeUpdate.hpp"
 #include "driver/Solver.hpp"
-#include "element/InternalForce.hpp"
+#include "element/ElementForces.hpp"
 #include "input/Deck.hpp"
 
 #include <gtest/gtest.h>

@@ -1,12 +1,13 @@
 #pragma once
-/// \file InternalForce.hpp
+/// \file ElementForces.hpp
 /// \brief Step 6 of the cycle: element solvers. For every element: half-step kinematics,
 /// velocity gradient, objective stress rotation, material update, internal + hourglass
 /// forces scattered to the nodes, and the element's stable time step.
 #include "core/Fields.hpp"
 #include "element/Hourglass.hpp"
 #include "element/Lanes.hpp"
-#include "element/NodeSweep.hpp"
+
+#include <vector>
 
 namespace scpdyn
 {
@@ -35,30 +36,40 @@ KOKKOS_INLINE_FUNCTION Index chunkBegin(const ElementGroup &g, int chunks, int k
   return first < g.end ? first : g.end;
 }
 
+/// \brief Elements per block of a thread's chunk after which an after-block hook runs
+/// (ElementLaunch.hpp): small enough that a block's nodes are still in cache.
+constexpr Index kElementBlock = 64;
+
+/// \brief What step 6 reports: the smallest stable element time step h / c before the Courant
+/// factor, and whether an element failed.
+struct ElementStepResult
+{
+  Real dt = 0;         ///< smallest h / c over the elements [s]
+  Index inverted = -1; ///< device id of an inverted element (the lowest), else -1
+  bool finite = true;  ///< false when an element's state is not finite
+  bool ok() const { return finite && inverted < 0; }
+};
+
 /// \brief Run the element solvers of all groups; forces go to nodes.f_int (atomic, or plain
 /// adds with one thread), or with ctl.gather to f_int and to corners.corner_force for shared
-/// nodes (then call gatherCornerForces). Returns the smallest stable
-/// element time step h / c before the Courant factor; a negative value
-/// -(e+1) reports an inverted element e. With an active `sweep` (makeNodeSweep()), each
-/// chunk also does step 12 on its early nodes after each block of its elements; then a
-/// chunk that flags a failed element integrates no more of its nodes.
-Real computeElementForces(const std::vector<ElementGroup> &groups, const ElementControls &ctl,
-                          const NodeFields &nodes, const ElementFields &elems,
-                          const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
-                          const NodeSweep &sweep = NodeSweep());
+/// nodes (then call gatherCornerForces). With an after-block hook (the node sweep of step 12,
+/// integrate/NodeSweep.hpp): computeElementForcesWith() in ElementLaunch.hpp.
+ElementStepResult computeElementForces(const std::vector<ElementGroup> &groups,
+                                       const ElementControls &ctl, const NodeFields &nodes,
+                                       const ElementFields &elems,
+                                       const DeviceView<MaterialParams *> &materials,
+                                       const NodeCorners &corners);
+
+/// \brief The chunk (group-major over all groups' chunks) of each node's elements when each
+/// group is cut into `chunks` chunks (chunkBegin()): -1 if none, -2 once two chunks touch it;
+/// and, in `last`, the last element (in the chunk's order) touching it.
+std::vector<int> nodeChunks(const ElementFields &elems, const std::vector<ElementGroup> &groups,
+                            Index num_nodes, int chunks, std::vector<Index> *last = nullptr);
 
 /// \brief The chunks of the deterministic assembly (NodeCorners) for `chunks` threads: which
 /// nodes two chunks share, their corners, and the corner force array.
 NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
                             Index num_nodes, int chunks);
-
-/// \brief The node sweep of step 6 (NodeSweep) for `chunks` chunks (1 with one thread; the
-/// NodeCorners chunks with the corner gather). `late` (per node, nonzero) marks the nodes that
-/// something after step 6 touches, and those this rank does not own; a node with a velocity
-/// constraint, or that two chunks or groups touch, is late too. The caller sets `loads` and
-/// the NodeIntegrator each cycle.
-NodeSweep makeNodeSweep(const ElementFields &elems, const std::vector<ElementGroup> &groups,
-                        const NodeFields &nodes, int chunks, std::vector<char> late);
 
 /// \brief The four rows of a hex row pack (markRowPacks()): lane l's corner kHexRowMinus[r] is
 /// node base_r + l and its corner kHexRowPlus[r] node base_r + l + 1.

@@ -4,7 +4,7 @@
 // general path given f_ext = 0, in 1, 2 and 3 dimensions, with and without an owned-node mask,
 // over several steps (the previous impulse enters the external work). Step 12 can also do the
 // next cycle's step 5 in its sweep.
-#include "driver/NodeUpdate.hpp"
+#include "integrate/NodeUpdate.hpp"
 #include "SameBits.hpp"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #pragma once
 /// \file NodeIntegrator.hpp
 /// \brief Step 12 on one node (the leapfrog, its sums, and the next cycle's step 5), shared by
-/// updateNodes() and by the node sweep inside step 6 (element/NodeSweep.hpp).
+/// updateNodes() and by the node sweep inside step 6 (integrate/NodeSweep.hpp).
 #include "core/Fields.hpp"
 
 namespace scpdyn
@@ -38,7 +38,9 @@ struct NodeSums
 ///
 /// Drift-kick-drift leapfrog (scp-method.md 2.3): the element step used x^{n+1/2} =
 /// x^n + dt/2 v^n; here v^{n+1} = v^n + dt F/M, velocity constraints imposed, and
-/// x^{n+1} = x^n + dt/2 (v^n + v^{n+1}). Without Loads, f_ext is +0 (not read) and a node
+/// x^{n+1} = x^n + dt/2 (v^n + v^{n+1}), F = (f_int + f_contact) + f_ext, without
+/// f_contact unless Contact (a template choice, so the step without contact is compiled as
+/// if f_contact did not exist: the same contractions, the same bits). Without Loads, f_ext is +0 (not read) and a node
 /// component without a velocity constraint has impulse 0 and previous impulse 0, so its
 /// external work term (+-0) is skipped: adding +-0 to the sum, which starts at +0, never
 /// changes its bits. With Clear, the node's forces are then set for the next cycle: f_int = 0
@@ -46,6 +48,7 @@ struct NodeSums
 struct NodeIntegrator
 {
   VectorView x, v, f_int, f_ext, prev_impulse;
+  VectorView f_contact; ///< read with Contact only
   RealView mass;
   DeviceView<int * [3]> bc;
   RealView vbc;   ///< BoundaryConditions::velocity_current
@@ -94,7 +97,7 @@ struct NodeIntegrator
   }
 
   /// Step 12 on node n, its terms added to s (then step 5 on it, with Clear).
-  template <int Dim, bool Loads, bool Clear>
+  template <int Dim, bool Loads, bool Clear, bool Contact = false>
   KOKKOS_INLINE_FUNCTION void integrate(const Index n, Sums<Dim> &s) const
   {
     const Real m = mass(n);
@@ -104,7 +107,7 @@ struct NodeIntegrator
     {
       const Real v_old = v(n, i);
       const Real fe = Loads ? f_ext(n, i) : Real(0);
-      const Real f = f_int(n, i) + fe;
+      const Real f = (Contact ? f_int(n, i) + f_contact(n, i) : f_int(n, i)) + fe;
       Real v_new = v_old + f * dt_over_m;
       Real work_force = fe;
       const int k = bc(n, i);
@@ -139,12 +142,12 @@ struct NodeIntegrator
   }
 
   /// Nodes begin .. end - 1 in order, their terms added to `sums`.
-  template <int Dim, bool Loads, bool Clear>
+  template <int Dim, bool Loads, bool Clear, bool Contact = false>
   KOKKOS_INLINE_FUNCTION void run(const Index begin, const Index end, NodeSums &sums) const
   {
     Sums<Dim> s;
     for (Index n = begin; n < end; ++n)
-      integrate<Dim, Loads, Clear>(n, s);
+      integrate<Dim, Loads, Clear, Contact>(n, s);
     s.addTo(sums);
   }
 };
