@@ -154,7 +154,7 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
   if (!c.has("surfaces"))
     c.missing("surfaces");
   const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(),
-                                       [](const PartSpec &p) { return p.mesh.type == "gmsh"; });
+                                       [](const PartSpec &p) { return p.mesh.type == MeshType::Gmsh; });
   std::map<std::string, int> seen;
   for (const YamlValue &item : c["surfaces"].list(1))
     spec.surfaces.push_back(parseSurface(item, names, check_sets, seen));

@@ -6,6 +6,7 @@
 #include "input/YamlReader.hpp"
 
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -40,6 +41,37 @@ void restrictKeys(const YamlMap &m, const std::vector<std::string> &allowed,
 
 /// \brief parts[] (with meshes); gmsh files are resolved against `deck_dir`.
 void parseParts(const YamlMap &root, Deck &deck, DeckNames &names,
+/// \brief The deck words of `values`, in their order (the order messages list them in).
+template <class E>
+std::vector<std::string> deckNames(std::initializer_list<E> values)
+{
+  std::vector<std::string> words;
+  for (E e : values)
+    words.push_back(deckName(e));
+  return words;
+}
+/// \brief The value of `values` whose deck word is `word` (a word choice() has accepted).
+template <class E>
+E valueNamed(const std::string &word, std::initializer_list<E> values)
+{
+  for (E e : values)
+    if (word == deckName(e))
+      return e;
+  return *values.begin();
+}
+/// \brief A required choice: the value `v` names, one of `values`.
+template <class E>
+E choiceOf(const YamlValue &v, std::initializer_list<E> values)
+{
+  return valueNamed(v.choice(deckNames(values)), values);
+}
+/// \brief An optional choice: the value key `key` names, or `fallback` without the key.
+template <class E>
+E readChoice(const YamlMap &m, const std::string &key, std::initializer_list<E> values, E fallback)
+{
+  return m.has(key) ? choiceOf(m[key], values) : fallback;
+}
+
                 const std::filesystem::path &deck_dir);
 /// \brief node_sets[], face_sets[], boundary_conditions[].
 void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names);
