@@ -2,7 +2,9 @@
 /// \file Deck.hpp
 /// \brief The typed, validated input deck. Parsed once from YAML (DeckParser.cpp); nothing in
 /// the cycle reads YAML. All values SI. Every key is documented in docs/input.md.
+#include "core/InputError.hpp"
 #include "core/Types.hpp"
+#include "material/MaterialSpec.hpp" // materials[]: the material room owns their contents
 
 #include <array>
 #include <map>
@@ -11,13 +13,6 @@
 
 namespace scpdyn
 {
-
-/// \brief Thrown for any input error; `what()` names the key path (and line when known).
-/// main() prints it and exits with status 2.
-struct InputError : std::runtime_error
-{
-  using std::runtime_error::runtime_error;
-};
 
 /// \brief The deck's choices, stored as enums once the parser has checked the word (the cycle
 /// compares enums, never deck text); deckName() gives the word back for the resolved deck and
@@ -69,21 +64,6 @@ struct TimeFunction
 {
   std::string name;
   std::vector<Real> t, value;
-};
-
-/// \brief A material as written in the deck: model name plus numeric parameters. The material
-/// room (material/MaterialLibrary.cpp) knows which keys each model takes, checks them and turns
-/// them into the POD MaterialParams the kernels use.
-struct MaterialSpec
-{
-  std::string name;
-  std::string model = "elastic";     ///< elastic | elastic_plastic | ... (docs/input.md)
-  std::string eos = "linear";        ///< linear | mie_gruneisen | ...
-  std::map<std::string, Real> values;   ///< every numeric key of the material (and of its eos:
-                                        ///< eos keys are stored as "eos.<key>")
-  std::map<std::string, int> lines;     ///< YAML line of each key, for error messages
-  int index = 0;                         ///< position in the deck's materials list
-  int line = 0;
 };
 
 /// \brief How a part's mesh is made.

@@ -3,7 +3,7 @@
 /// schema's "which keys may appear where" lives in the key lists passed to YamlValue::map.
 #include "input/DeckSections.hpp"
 #include "input/YamlReader.hpp"
-#include "material/MaterialLibrary.hpp"
+#include "material/MaterialSpec.hpp"
 
 #include <algorithm>
 #include <filesystem>
