@@ -239,7 +239,7 @@ KOKKOS_INLINE_FUNCTION Real geomaterialUpdate(const MaterialParams &p, const Mat
     stress[k] = s[k];
   for (int k = 0; k < 3; ++k)
     stress[k] -= g.P;
-  return kmath::sqrt((geoBulk(p, g.theta_c) + 4.0 / 3.0 * p.shear) / st.rho_new);
+  return kmath::sqrt(pWaveModulus(geoBulk(p, g.theta_c), p.shear) / st.rho_new);
 }
 
 } // namespace scpdyn

@@ -203,7 +203,7 @@ KOKKOS_INLINE_FUNCTION Real highExplosiveUpdate(const MaterialParams &p, const M
     stress[k + 3] = 0;
   }
   const Real c2 = -dAj * V / st.rho_new + w * e + w * p_full / st.rho_new;
-  const Real c2_floor = 1e-6 * p.bulk / p.density;
+  const Real c2_floor = soundSpeedSquaredFloor(p); // the products carry no shear: 1e-6 K / rho0
   return kmath::sqrt(c2 > c2_floor ? c2 : c2_floor);
 }
 
