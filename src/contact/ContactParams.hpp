@@ -2,6 +2,7 @@
 /// \file ContactParams.hpp
 /// \brief Joint (common-plane contact) parameters and per-CP history, both POD so they can live
 /// in Views and be copied into kernels. Equation numbers refer to shared/docs/scp-method.md.
+#include "core/ScalarOps.hpp"
 #include "core/Types.hpp"
 
 namespace scpdyn
@@ -11,9 +12,9 @@ namespace scpdyn
 /// from the project-wide `kmath` alias of core/Types.hpp).
 namespace ContactMath
 {
-KOKKOS_INLINE_FUNCTION Real abs(Real x) { return x < 0 ? -x : x; }
-KOKKOS_INLINE_FUNCTION Real min(Real x, Real y) { return x < y ? x : y; }
-KOKKOS_INLINE_FUNCTION Real max(Real x, Real y) { return x > y ? x : y; }
+using scalar_ops::abs;
+using scalar_ops::max;
+using scalar_ops::min;
 KOKKOS_INLINE_FUNCTION Real dot(const Real x[3], const Real y[3])
 {
   return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
