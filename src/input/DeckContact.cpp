@@ -59,17 +59,8 @@ SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool che
   claimName(seen, m["name"], s.name);
   if (m.exactlyOne({"part", "face_set"}) == "part")
   {
-    const YamlValue p = m["part"];
-    s.part = p.string();
-    if (s.part.back() == '*')
-    {
-      const std::string prefix = s.part.substr(0, s.part.size() - 1);
-      if (std::none_of(names.parts.begin(), names.parts.end(),
-                       [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
-        p.fail("no part name starts with '" + prefix + "'");
-    }
-    else
-      checkReference(p, s.part, "part", names.parts);
+    s.part = m["part"].string();
+    checkPartReference(m["part"], s.part, names);
   }
   else
   {

@@ -90,17 +90,8 @@ void parseSets(const YamlMap &root, const std::string &key, int dim, const DeckN
     claimName(seen, m["name"], set.name);
     if (m.exactlyOne({"part", "box"}) == "part")
     {
-      const YamlValue p = m["part"];
-      set.part = p.string();
-      if (set.part.back() == '*')
-      {
-        const std::string prefix = set.part.substr(0, set.part.size() - 1);
-        if (std::none_of(names.parts.begin(), names.parts.end(),
-                         [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
-          p.fail("no part name starts with '" + prefix + "'");
-      }
-      else
-        checkReference(p, set.part, "part", names.parts);
+      set.part = m["part"].string();
+      checkPartReference(m["part"], set.part, names);
     }
     else
     {
@@ -157,6 +148,19 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
 }
 
 } // namespace
+
+void checkPartReference(const YamlValue &v, const std::string &part, const DeckNames &names)
+{
+  if (part.back() != '*')
+  {
+    checkReference(v, part, "part", names.parts);
+    return;
+  }
+  const std::string prefix = part.substr(0, part.size() - 1);
+  if (std::none_of(names.parts.begin(), names.parts.end(),
+                   [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
+    v.fail("no part name starts with '" + prefix + "'");
+}
 
 void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::path &deck_dir)
 {

@@ -35,12 +35,12 @@ void claimName(std::map<std::string, int> &seen, const YamlValue &v, const std::
 /// \brief Throw unless `name` is in `defined` (suggesting the closest defined name).
 void checkReference(const YamlValue &v, const std::string &name, const std::string &what,
                     const std::map<std::string, int> &defined);
+/// \brief Throw unless `part` names a defined part or, ending in '*', is the prefix of one.
+void checkPartReference(const YamlValue &v, const std::string &part, const DeckNames &names);
 /// \brief Throw for a key of `m` that is not in `allowed` (for keys that depend on a type).
 void restrictKeys(const YamlMap &m, const std::vector<std::string> &allowed,
                   const std::string &context);
 
-/// \brief parts[] (with meshes); gmsh files are resolved against `deck_dir`.
-void parseParts(const YamlMap &root, Deck &deck, DeckNames &names,
 /// \brief The deck words of `values`, in their order (the order messages list them in).
 template <class E>
 std::vector<std::string> deckNames(std::initializer_list<E> values)
@@ -72,6 +72,8 @@ E readChoice(const YamlMap &m, const std::string &key, std::initializer_list<E> 
   return m.has(key) ? choiceOf(m[key], values) : fallback;
 }
 
+/// \brief parts[] (with meshes); gmsh files are resolved against `deck_dir`.
+void parseParts(const YamlMap &root, Deck &deck, DeckNames &names,
                 const std::filesystem::path &deck_dir);
 /// \brief node_sets[], face_sets[], boundary_conditions[].
 void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names);
