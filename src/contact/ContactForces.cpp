@@ -1,7 +1,7 @@
 // Step 9 of the cycle for every CP (scp-method.md Appendix A): half-step geometry (A-D), the
 // option's force (E) and its distribution to the face nodes, the correction passes of the
 // velocity-constraint options (10.8) and the time-step limit (19). The checks and the contact
-// energy are in ContactChecks.cpp.
+// energy are in ContactFinish.cpp.
 #include "contact/ContactSystem.hpp"
 #include "contact/ContactKernels.hpp"
 #include "contact/JointConstraints.hpp"

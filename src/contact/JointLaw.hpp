@@ -11,7 +11,7 @@
 /// Sign conventions (section 1): n points from face 1 to face 2; Vn = (V1 - V2).n > 0 closing;
 /// Vs = tangential part of V1 - V2; the force on face 2 is F = Fn*n + Fs, face 1 gets -F.
 #include "contact/CommonPlaneGeometry.hpp"
-#include "contact/ContactParams.hpp"
+#include "contact/CommonPlaneState.hpp"
 
 namespace scpdyn
 {

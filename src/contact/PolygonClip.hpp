@@ -3,7 +3,7 @@
 /// \brief Planar polygon kernels of the common-plane overlap (scp-method.md 4.4): shoelace area
 /// and first moments, convexity test, Sutherland-Hodgman clipping and the signed fan split of a
 /// non-convex polygon. Device-callable, fixed-size buffers, no allocation.
-#include "contact/ContactParams.hpp"
+#include "contact/CommonPlaneState.hpp"
 
 namespace scpdyn
 {

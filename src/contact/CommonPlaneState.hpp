@@ -1,5 +1,5 @@
 #pragma once
-/// \file ContactParams.hpp
+/// \file CommonPlaneState.hpp
 /// \brief Joint (common-plane contact) parameters and per-CP history, both POD so they can live
 /// in Views and be copied into kernels. Equation numbers refer to shared/docs/scp-method.md.
 #include "core/ScalarOps.hpp"
