@@ -10,7 +10,7 @@ namespace scpdyn
 
 /// \brief Small vector helpers usable on host and device (square roots and trigonometry come
 /// from the project-wide `kmath` alias of core/Types.hpp).
-namespace ContactMath
+namespace contact_math
 {
 using scalar_ops::abs;
 using scalar_ops::max;
@@ -26,7 +26,7 @@ KOKKOS_INLINE_FUNCTION void cross(const Real x[3], const Real y[3], Real r[3])
   r[2] = x[0] * y[1] - x[1] * y[0];
 }
 KOKKOS_INLINE_FUNCTION Real norm(const Real x[3]) { return kmath::sqrt(dot(x, x)); }
-} // namespace ContactMath
+} // namespace contact_math
 
 /// \brief Contact option of a CP (scp-method.md section 11).
 enum class ContactOption : int

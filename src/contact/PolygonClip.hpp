@@ -10,9 +10,9 @@ namespace scpdyn
 
 constexpr int kMaxPolyVerts = 16; ///< overlap buffer; clipConvex needs n_subject + n_clip <= 16
 
-namespace CpGeom
+namespace cp_geometry
 {
-using namespace ContactMath;
+using namespace contact_math;
 
 KOKKOS_INLINE_FUNCTION Real cross2(Real ax, Real ay, Real bx, Real by) { return ax * by - ay * bx; }
 
@@ -181,5 +181,5 @@ KOKKOS_INLINE_FUNCTION void overlapMoments(const Real P[][2], int np, const Real
     }
 }
 
-} // namespace CpGeom
+} // namespace cp_geometry
 } // namespace scpdyn

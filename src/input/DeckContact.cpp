@@ -10,7 +10,7 @@
 
 namespace scpdyn
 {
-namespace Impl
+namespace input_impl
 {
 namespace
 {
@@ -151,5 +151,5 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
     spec.surfaces.push_back(parseSurface(item, names, check_sets, seen));
 }
 
-} // namespace Impl
+} // namespace input_impl
 } // namespace scpdyn

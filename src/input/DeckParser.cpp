@@ -38,7 +38,7 @@ const char *deckName(ElementType t)
                                    : "tet4";
 }
 
-namespace Impl
+namespace input_impl
 {
 
 bool isPositive(Real x) { return x > 0; }
@@ -93,11 +93,11 @@ void restrictKeys(const YamlMap &m, const std::vector<std::string> &allowed,
       m[e.key].fail("unknown key '" + e.key + "' for " + context + suggestion(e.key, allowed));
 }
 
-} // namespace Impl
+} // namespace input_impl
 
 namespace
 {
-using namespace Impl;
+using namespace input_impl;
 namespace fs = std::filesystem;
 
 void parseTime(const YamlMap &root, Deck &deck)

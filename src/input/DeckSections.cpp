@@ -7,7 +7,7 @@
 
 namespace scpdyn
 {
-namespace Impl
+namespace input_impl
 {
 namespace
 {
@@ -256,5 +256,5 @@ void parseGauges(const YamlMap &root, Deck &deck)
   }
 }
 
-} // namespace Impl
+} // namespace input_impl
 } // namespace scpdyn

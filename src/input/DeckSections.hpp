@@ -13,7 +13,7 @@
 
 namespace scpdyn
 {
-namespace Impl
+namespace input_impl
 {
 
 /// \brief Names defined so far, each with its YAML line (for references and duplicates).
@@ -82,5 +82,5 @@ void parseGauges(const YamlMap &root, Deck &deck);
 /// \brief contact (DeckContact.cpp); after the parts and sets it refers to.
 void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names);
 
-} // namespace Impl
+} // namespace input_impl
 } // namespace scpdyn

@@ -16,7 +16,7 @@ namespace scpdyn
 namespace
 {
 
-using Impl::formatReal;
+using input_impl::formatReal;
 
 // Reals go out as their shortest exact decimal text (a plain scalar), so that they read back
 // bit for bit; strings are always double-quoted, so a title like "2" or "yes" stays a string.

@@ -9,13 +9,13 @@ namespace scpdyn
 {
 
 /// \brief The branch helpers of core/ScalarOps.hpp under the name the material models use.
-namespace MaterialMath
+namespace material_math
 {
 using scalar_ops::abs;
 using scalar_ops::clamp;
 using scalar_ops::max;
 using scalar_ops::min;
-} // namespace MaterialMath
+} // namespace material_math
 
 /// \brief Root of f on [lo, hi] where f(lo) and f(hi) have opposite signs (or one is zero).
 ///
@@ -40,7 +40,7 @@ KOKKOS_INLINE_FUNCTION Real bracketedRoot(const F &f, Real lo, Real flo, Real hi
     if (!(x > lo && x < hi)) // round-off at a converged bracket
       x = 0.5 * (lo + hi);
     const Real fx = f(x);
-    if (MaterialMath::abs(fx) <= ftol)
+    if (material_math::abs(fx) <= ftol)
       return x;
     if ((fx > 0) == (fhi > 0))
     {
