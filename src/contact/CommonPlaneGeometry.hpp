@@ -44,9 +44,9 @@ struct CpGeometry
   Real h1, h2;                     ///< face diameters [m]
 };
 
-namespace CpGeom
+namespace cp_geometry
 {
-using namespace ContactMath;
+using namespace contact_math;
 
 /// \brief In-plane basis of 4.3: e1 = normalise(k x n) with k the axis of smallest |n_k|,
 /// e2 = n x e1, so (e1, e2, n) is right-handed.
@@ -92,7 +92,7 @@ KOKKOS_INLINE_FUNCTION Real initialClosure(const CpGeometry &g)
   return s[0] - s[1];
 }
 
-} // namespace CpGeom
+} // namespace cp_geometry
 
 /// \brief Face centroid, outward normal, area and diameter (section 4.1).
 ///
@@ -108,7 +108,7 @@ KOKKOS_INLINE_FUNCTION Real initialClosure(const CpGeometry &g)
 template <int Dim>
 KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool axisym)
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   FaceGeometry f;
   if constexpr (Dim == 1)
   {
@@ -130,7 +130,7 @@ KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool
       f.c[d] += x[i][d];
     f.c[d] /= nn;
   }
-  f.diameter = CpGeom::faceDiameter(x, nn);
+  f.diameter = cp_geometry::faceDiameter(x, nn);
   Real vec[3] = {0, 0, 0};
   if constexpr (Dim == 2)
   {
@@ -181,7 +181,7 @@ template <int Dim>
 KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1, const Real x2[][3],
                                                      int n2, bool axisym)
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   static_assert(Dim >= 1 && Dim <= 3, "computeCommonPlane: Dim is 1, 2 or 3");
   CpGeometry g;
   const bool ax = Dim == 2 && axisym;
@@ -210,7 +210,7 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
   Real xi_c = 0, eta_c = 0;
   if constexpr (Dim == 1)
   { // the common cross-section; the basis only spans the (unused) shear plane
-    CpGeom::cpBasis(g.n, g.e1, g.e2);
+    cp_geometry::cpBasis(g.n, g.e1, g.e2);
     g.Ac = min(g.A1, g.A2);
     g.A1p = g.A1, g.A2p = g.A2;
   }
@@ -251,7 +251,7 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
   }
   else
   {
-    CpGeom::cpBasis(g.n, g.e1, g.e2);
+    cp_geometry::cpBasis(g.n, g.e1, g.e2);
     Real P[2][4][2];
     const int nv[2] = {n1, n2};
     Real area[2];
@@ -263,15 +263,15 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
         const Real d[3] = {x[i][0] - g.x_cp[0], x[i][1] - g.x_cp[1], x[i][2] - g.x_cp[2]};
         P[f][i][0] = dot(d, g.e1), P[f][i][1] = dot(d, g.e2);
       }
-      area[f] = CpGeom::polygonSignedArea(P[f], nv[f]);
+      area[f] = cp_geometry::polygonSignedArea(P[f], nv[f]);
       if (area[f] < 0) // face 2 projects clockwise (n2 ~ -n)
-        CpGeom::reversePolygon(P[f], nv[f]), area[f] = -area[f];
+        cp_geometry::reversePolygon(P[f], nv[f]), area[f] = -area[f];
     }
     g.A1p = area[0], g.A2p = area[1];
     if (area[0] > 0 && area[1] > 0)
     {
       Real A, Mx, My;
-      CpGeom::overlapMoments(P[0], n1, P[1], n2, A, Mx, My);
+      cp_geometry::overlapMoments(P[0], n1, P[1], n2, A, Mx, My);
       if (A > 0)
       {
         g.Ac = A;
@@ -283,7 +283,7 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
     g.x_poc[d] = g.x_cp[d] + xi_c * g.e1[d] + eta_c * g.e2[d];
   g.f1 = g.A1p > 0 ? min(1.0, g.Ac / g.A1p) : 0;
   g.f2 = g.A2p > 0 ? min(1.0, g.Ac / g.A2p) : 0;
-  g.u0 = CpGeom::initialClosure(g);
+  g.u0 = cp_geometry::initialClosure(g);
   return g;
 }
 
@@ -292,7 +292,7 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
 /// (Newton, <= 10 iterations); weights clipped to [0, 1] and renormalised.
 KOKKOS_INLINE_FUNCTION void pocWeights(const Real x[][3], int nn, const CpGeometry &g, Real w[])
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   if (nn == 1)
   { // a point face (1D)
     w[0] = 1;
@@ -315,11 +315,11 @@ KOKKOS_INLINE_FUNCTION void pocWeights(const Real x[][3], int nn, const CpGeomet
   else if (nn == 3)
   {
     const Real A =
-        CpGeom::cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], q[2][0] - q[0][0], q[2][1] - q[0][1]);
+        cp_geometry::cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], q[2][0] - q[0][0], q[2][1] - q[0][1]);
     for (int i = 0; i < 3; ++i)
     {
       const int j = (i + 1) % 3, k = (i + 2) % 3;
-      w[i] = A != 0 ? CpGeom::cross2(q[j][0] - pp[0], q[j][1] - pp[1], q[k][0] - pp[0],
+      w[i] = A != 0 ? cp_geometry::cross2(q[j][0] - pp[0], q[j][1] - pp[1], q[k][0] - pp[0],
                                      q[k][1] - pp[1]) /
                           A
                     : 1.0 / 3.0;
@@ -375,7 +375,7 @@ KOKKOS_INLINE_FUNCTION void pocWeights(const Real x[][3], int nn, const CpGeomet
 KOKKOS_INLINE_FUNCTION void nodalWeights(const Real x[][3], int nn, const CpGeometry &g, int face,
                                          DistributionRule rule, Real w[], Real blend = 0)
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   if (rule == DistributionRule::Penetration)
   {
     const Real sign = face == 1 ? 1.0 : -1.0;
@@ -402,7 +402,7 @@ KOKKOS_INLINE_FUNCTION void nodalWeights(const Real x[][3], int nn, const CpGeom
 /// \brief Activity test of 3.2/3.4: Ac > epsilon_A * min(A1, A2).
 KOKKOS_INLINE_FUNCTION bool cpIsActive(const CpGeometry &g)
 {
-  return g.valid && g.Ac > kAreaEpsilon * ContactMath::min(g.A1, g.A2);
+  return g.valid && g.Ac > kAreaEpsilon * contact_math::min(g.A1, g.A2);
 }
 
 } // namespace scpdyn

@@ -2,7 +2,7 @@
 /// \file ContactChecks.hpp
 /// \brief The divergence test of step 9 (what stops a run) and the closure limits shared with
 /// the candidate rules of detection (scp-method.md 3.2, 3.4, 6.2). Device-callable.
-#include "contact/ContactParams.hpp"
+#include "contact/CommonPlaneState.hpp"
 
 namespace scpdyn
 {
@@ -38,7 +38,7 @@ constexpr Real kEnergyCreation = 1.0;
 KOKKOS_INLINE_FUNCTION bool contactCreatedEnergy(Real work, Real work_peak, Real stored_peak,
                                                  Real gross)
 {
-  const Real limit = kEnergyCreation * ContactMath::max(work_peak, stored_peak) + 1e-12 * gross;
+  const Real limit = kEnergyCreation * contact_math::max(work_peak, stored_peak) + 1e-12 * gross;
   return work < -limit || !(work - work == 0);
 }
 
@@ -61,7 +61,7 @@ KOKKOS_INLINE_FUNCTION int checkCp(const JointParams &p, const CpState &s, const
     finite = finite && F[d] - F[d] == 0 && s.Fs[d] - s.Fs[d] == 0;
   if (!finite)
     return CpCheckNonFinite;
-  const bool vanishing = !(Ac >= kVanishingArea * ContactMath::min(A1, A2));
+  const bool vanishing = !(Ac >= kVanishingArea * contact_math::min(A1, A2));
   if (joint && active && !vanishing && s.u > kDivergedClosure * p.a)
     return CpCheckClosure;
   return CpCheckOk;
@@ -72,7 +72,7 @@ KOKKOS_INLINE_FUNCTION int checkCp(const JointParams &p, const CpState &s, const
 /// by more than half a face (a fine mesh, a soft joint) keeps its CP [m].
 KOKKOS_INLINE_FUNCTION Real candidatePenetration(Real h1, Real h2, Real a)
 {
-  return 0.5 * ContactMath::min(h1, h2) + kDivergedClosure * a;
+  return 0.5 * contact_math::min(h1, h2) + kDivergedClosure * a;
 }
 
 } // namespace scpdyn

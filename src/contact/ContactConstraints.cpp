@@ -14,7 +14,7 @@
 
 namespace scpdyn
 {
-using namespace ContactKernels;
+using namespace contact_kernels;
 
 namespace
 {
@@ -302,7 +302,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
             bn += B(p, d) * cp.normal(p, d);
           }
           // tolerance: round-off of the removed approach velocity
-          const Real tol = 1e-9 * (ContactMath::abs(bn) + ContactMath::abs(dVn)) + 1e-300;
+          const Real tol = 1e-9 * (contact_math::abs(bn) + contact_math::abs(dVn)) + 1e-300;
           if (mode(p) == TieNormal && Fn < 0)
           {
             mode(p) = TieNone;
@@ -349,7 +349,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         for (int d = 0; d < 3; ++d)
           Vn += (V1[d] - V2[d]) * cp.normal(p, d);
         s.u += dt * Vn; // the end-of-step closure rate
-        s.umax = ContactMath::max(s.umax, s.u);
+        s.umax = contact_math::max(s.umax, s.u);
         s.Fn = Fn;
         for (int d = 0; d < 3; ++d)
         {

@@ -1,7 +1,7 @@
 // Step 9 of the cycle for every CP (scp-method.md Appendix A): half-step geometry (A-D), the
 // option's force (E) and its distribution to the face nodes, the correction passes of the
 // velocity-constraint options (10.8) and the time-step limit (19). The checks and the contact
-// energy are in ContactChecks.cpp.
+// energy are in ContactFinish.cpp.
 #include "contact/ContactSystem.hpp"
 #include "contact/ContactKernels.hpp"
 #include "contact/JointConstraints.hpp"
@@ -11,7 +11,7 @@
 
 namespace scpdyn
 {
-using namespace ContactKernels;
+using namespace contact_kernels;
 
 void ContactSystem::computeVstar(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt)
 {
@@ -98,7 +98,7 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
         const DistributionRule rule = isConstraint(P.option) ? DistributionRule::Poc : P.distribution;
         // blend length of the penetration weights (8.1, CommonPlaneGeometry.hpp): the relative
         // displacement the last force gives the reduced mass in one step from rest
-        const Real F_old = kmath::sqrt(s.Fn * s.Fn + ContactMath::dot(s.Fs, s.Fs));
+        const Real F_old = kmath::sqrt(s.Fn * s.Fn + contact_math::dot(s.Fs, s.Fs));
         const Real blend = 0.5 * dt * dt * F_old / mstar;
         Real w[kMaxFaceNodes];
         nodalWeights(x1, F.num_nodes(f1), g, 1, rule, w, blend);

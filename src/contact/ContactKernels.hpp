@@ -6,7 +6,7 @@
 
 namespace scpdyn
 {
-namespace ContactKernels
+namespace contact_kernels
 {
 
 KOKKOS_INLINE_FUNCTION void faceVelocity(const ContactFaceData &F, Index f, const VectorView &v,
@@ -94,5 +94,5 @@ KOKKOS_INLINE_FUNCTION bool ownsPlane(const ContactFaceData &F, const CommonPlan
   return F.ghost(cp.face1(p)) == 0;
 }
 
-} // namespace ContactKernels
+} // namespace contact_kernels
 } // namespace scpdyn

@@ -114,7 +114,7 @@ KOKKOS_INLINE_FUNCTION bool boundsAllowPair(const Real a[8], const Real b[8], Re
   Real dn = 0, dc2 = 0, dn_raw[3];
   for (int d = 0; d < 3; ++d)
     dn_raw[d] = a[3 + d] - b[3 + d];
-  const Real L = ContactMath::norm(dn_raw);
+  const Real L = contact_math::norm(dn_raw);
   for (int d = 0; d < 3; ++d)
   {
     const Real dc = b[d] - a[d];
@@ -123,12 +123,12 @@ KOKKOS_INLINE_FUNCTION bool boundsAllowPair(const Real a[8], const Real b[8], Re
     dc2 += dc * dc;
   }
   const Real rs = a[6] + b[6];
-  const Real lat2 = ContactMath::max(0.0, dc2 - dn * dn);
+  const Real lat2 = contact_math::max(0.0, dc2 - dn * dn);
   if (lat2 > rs * rs * (1 + 1e-6))
     return false;
-  const Real t = kmath::sqrt(ContactMath::max(0.0, (1 + nn) / (1 - nn)));
-  const Real lower = dn - t * (kmath::sqrt(lat2) + 2 * ContactMath::min(a[6], b[6]));
-  return !(lower > g_search + 1e-12 * ContactMath::abs(g_search) + 1e-6 * rs);
+  const Real t = kmath::sqrt(contact_math::max(0.0, (1 + nn) / (1 - nn)));
+  const Real lower = dn - t * (kmath::sqrt(lat2) + 2 * contact_math::min(a[6], b[6]));
+  return !(lower > g_search + 1e-12 * contact_math::abs(g_search) + 1e-6 * rs);
 }
 
 /// 3D: the overlap lies in the intersection of the faces' bounding boxes in the CP plane
@@ -138,7 +138,7 @@ KOKKOS_INLINE_FUNCTION bool boxesOverlap(const Real x1[][3], int n1, const Real 
                                          const Real n[3], Real min_area)
 {
   Real e1[3], e2[3];
-  CpGeom::cpBasis(n, e1, e2);
+  cp_geometry::cpBasis(n, e1, e2);
   Real lo[2][2], hi[2][2];
   for (int f = 0; f < 2; ++f)
   {
@@ -148,14 +148,14 @@ KOKKOS_INLINE_FUNCTION bool boxesOverlap(const Real x1[][3], int n1, const Real 
       lo[f][k] = 1e300, hi[f][k] = -1e300;
     for (int a = 0; a < nv; ++a)
     {
-      const Real p[2] = {ContactMath::dot(x[a], e1), ContactMath::dot(x[a], e2)};
+      const Real p[2] = {contact_math::dot(x[a], e1), contact_math::dot(x[a], e2)};
       for (int k = 0; k < 2; ++k)
-        lo[f][k] = ContactMath::min(lo[f][k], p[k]), hi[f][k] = ContactMath::max(hi[f][k], p[k]);
+        lo[f][k] = contact_math::min(lo[f][k], p[k]), hi[f][k] = contact_math::max(hi[f][k], p[k]);
     }
   }
   Real w[2];
   for (int k = 0; k < 2; ++k)
-    w[k] = ContactMath::min(hi[0][k], hi[1][k]) - ContactMath::max(lo[0][k], lo[1][k]);
+    w[k] = contact_math::min(hi[0][k], hi[1][k]) - contact_math::max(lo[0][k], lo[1][k]);
   return w[0] > 0 && w[1] > 0 && 16 * w[0] * w[1] > 1e-2 * kAreaEpsilon * min_area;
 }
 
@@ -187,7 +187,7 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const SearchData &S, Index i, Index j, c
   { // what pairGeometry does, with the box test between the gather and the clipping
     const int n1 = gatherHalfStep(F, i, S.x, S.v, S.half_dt, x1);
     const int n2 = gatherHalfStep(F, j, S.x, S.v, S.half_dt, x2);
-    if (!boxesOverlap(x1, n1, x2, n2, n_cp, ContactMath::min(G.area(i), G.area(j))))
+    if (!boxesOverlap(x1, n1, x2, n2, n_cp, contact_math::min(G.area(i), G.area(j))))
       return false;
     const CpGeometry g = computeCommonPlane<3>(x1, n1, x2, n2, S.axisym);
     return g.valid && -g.u0 <= S.g_search && cpIsActive(g);
@@ -238,8 +238,8 @@ KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit
           Real b[8];
           for (int k = 0; k < 8; ++k)
             b[k] = B.packed(q, k);
-          if (ContactMath::abs(b[0] - a[0]) > B.reach ||
-              ContactMath::abs(b[1] - a[1]) > B.reach || ContactMath::abs(b[2] - a[2]) > B.reach)
+          if (contact_math::abs(b[0] - a[0]) > B.reach ||
+              contact_math::abs(b[1] - a[1]) > B.reach || contact_math::abs(b[2] - a[2]) > B.reach)
             continue;
           Real n_cp[3] = {0, 0, 0};
           // 1D (point faces, a handful of them): rule 2 only, the bounds are not needed
@@ -290,7 +290,7 @@ void computeFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real
         for (int a = 0; a < nn; ++a)
         {
           const Real d[3] = {xh[a][0] - g.c[0], xh[a][1] - g.c[1], xh[a][2] - g.c[2]};
-          r2 = ContactMath::max(r2, ContactMath::dot(d, d));
+          r2 = contact_math::max(r2, contact_math::dot(d, d));
         }
         Gd.radius(f) = kmath::sqrt(r2);
         Gd.valid(f) = g.valid;

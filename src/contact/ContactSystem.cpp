@@ -153,8 +153,8 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
         if (!g0.valid)
         {
           Real V1[3], V2[3], Vn = 0;
-          ContactKernels::faceVelocity(F, f1, v, V1);
-          ContactKernels::faceVelocity(F, f2, v, V2);
+          contact_kernels::faceVelocity(F, f1, v, V1);
+          contact_kernels::faceVelocity(F, f2, v, V2);
           for (int d = 0; d < 3; ++d)
             Vn += (V1[d] - V2[d]) * g.n[d];
           u0 = g.u0 - half_dt * Vn;

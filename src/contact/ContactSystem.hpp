@@ -159,7 +159,7 @@ private:
   VectorView _impulse;   ///< last cycle's contact impulse fc dt (contact nodes) [N s]
   DeviceView<CpState *> _state_before; ///< CP histories at the start of step 9 (restored on failure)
   Real _work = 0;        ///< contact energy [J]
-  // energy-creation check (ContactChecks.cpp): the joint CPs' net work, its peak, the sum of
+  // energy-creation check (ContactFinish.cpp): the joint CPs' net work, its peak, the sum of
   // its |increments|, the peak stored energy, and the step of the last cycle
   RealView _cp_work;
   Real _joint_work = 0, _joint_work_peak = 0, _joint_work_gross = 0, _stored_peak = 0;

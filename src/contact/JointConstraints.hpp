@@ -9,9 +9,9 @@
 namespace scpdyn
 {
 
-namespace JointImpl
+namespace joint_impl
 {
-using namespace ContactMath;
+using namespace contact_math;
 
 /// \brief Slide-line normal force with gaps (D14), clamped >= 0; advances u with the end-of-step
 /// relative velocity. Returns Fn and sets the end-of-step Vn'.
@@ -46,7 +46,7 @@ KOKKOS_INLINE_FUNCTION void constraintFinish(CpState &s, const CpKinematics &k, 
   s.Ac_old = k.Ac;
 }
 
-} // namespace JointImpl
+} // namespace joint_impl
 
 /// \brief Slide line (24) with gaps (D14): Fn >= 0 stops the normal approach by the end of the
 /// step, no shear. Needs a finite m*.
@@ -54,12 +54,12 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateSlideLine(CpState &s, const CpKinemati
 {
   CpStepResult r;
   Real Vn1;
-  const Real Fn = JointImpl::slideLineNormal(s, k, Vn1);
+  const Real Fn = joint_impl::slideLineNormal(s, k, Vn1);
   Real V0[3], F[3];
   for (int d = 0; d < 3; ++d)
     V0[d] = k.Vn * k.n[d] + k.Vs[d], F[d] = Fn * k.n[d];
   r.slipped = 0;
-  JointImpl::constraintFinish(s, k, V0, F, r);
+  joint_impl::constraintFinish(s, k, V0, F, r);
   return r;
 }
 
@@ -78,7 +78,7 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateSticky(CpState &s, const CpKinematics 
   }
   // V_n' = 0 by construction, so the tracked closure u stays as it is
   r.slipped = 0;
-  JointImpl::constraintFinish(s, k, V0, F, r);
+  joint_impl::constraintFinish(s, k, V0, F, r);
   return r;
 }
 
@@ -87,12 +87,12 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateSticky(CpState &s, const CpKinematics 
 KOKKOS_INLINE_FUNCTION CpStepResult updateSleepy(const JointParams &p, CpState &s,
                                                  const CpKinematics &k)
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   if (!s.failed)
     return updateSticky(s, k);
   CpStepResult r;
   Real Vn1;
-  const Real Fn = JointImpl::slideLineNormal(s, k, Vn1);
+  const Real Fn = joint_impl::slideLineNormal(s, k, Vn1);
   Real Fst[3], V0[3], F[3];
   for (int d = 0; d < 3; ++d)
     Fst[d] = k.mstar * k.Vs[d] / k.dt + k.Fint_s[d]; // (25)
@@ -101,7 +101,7 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateSleepy(const JointParams &p, CpState &
   r.slipped = mag > Fs_max ? 1 : 0;
   for (int d = 0; d < 3; ++d)
     V0[d] = k.Vn * k.n[d] + k.Vs[d], F[d] = Fn * k.n[d] + scale * Fst[d];
-  JointImpl::constraintFinish(s, k, V0, F, r);
+  joint_impl::constraintFinish(s, k, V0, F, r);
   return r;
 }
 

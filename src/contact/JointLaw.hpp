@@ -11,7 +11,7 @@
 /// Sign conventions (section 1): n points from face 1 to face 2; Vn = (V1 - V2).n > 0 closing;
 /// Vs = tangential part of V1 - V2; the force on face 2 is F = Fn*n + Fs, face 1 gets -F.
 #include "contact/CommonPlaneGeometry.hpp"
-#include "contact/ContactParams.hpp"
+#include "contact/CommonPlaneState.hpp"
 
 namespace scpdyn
 {
@@ -56,7 +56,7 @@ KOKKOS_INLINE_FUNCTION Real jointCapClosure(const JointParams &p)
 /// [Pa].
 KOKKOS_INLINE_FUNCTION Real jointModulus(const JointParams &p, Real u, Real umax)
 {
-  const Real um = ContactMath::max(u, umax);
+  const Real um = contact_math::max(u, umax);
   if (um >= jointCapClosure(p))
     return p.Emax;
   const Real q = 1.0 - um / p.a;
@@ -85,7 +85,7 @@ KOKKOS_INLINE_FUNCTION Real frictionAngle(const JointParams &p, Real usp)
 /// tan(phi) so that dilation never creates energy (6.7).
 KOKKOS_INLINE_FUNCTION Real dilationTangent(const JointParams &p, Real Fn, Real Ac, Real tan_phi)
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   if (p.sigma_cr <= 0)
     return 0;
   const Real decay = max(0.0, 1.0 - max(Fn, 0.0) / (p.sigma_cr * Ac));
@@ -105,7 +105,7 @@ KOKKOS_INLINE_FUNCTION Real storedEnergy(const JointParams &p, Real Fn, const Re
   if (Ac <= 0)
     return 0;
   const Real Ks = p.G * Ac / p.a;
-  const Real s2 = ContactMath::dot(Fs, Fs);
+  const Real s2 = contact_math::dot(Fs, Fs);
   return 0.5 * Fn * Fn / lineStiffness(p, umax, Ac) + (s2 > 0 ? 0.5 * s2 / Ks : 0.0);
 }
 
@@ -113,7 +113,7 @@ KOKKOS_INLINE_FUNCTION Real storedEnergy(const JointParams &p, Real Fn, const Re
 /// to n (Rodrigues). Below |n_old x n| = 1e-12 only the normal component is removed.
 KOKKOS_INLINE_FUNCTION void rotateWithNormal(const Real n_old[3], const Real n[3], Real v[3])
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   Real k[3];
   cross(n_old, n, k);
   const Real s = norm(k), c = dot(n_old, n);
@@ -155,7 +155,7 @@ KOKKOS_INLINE_FUNCTION void internalForceTerm(const Real abar1[3], const Real ab
   Real f[3];
   for (int d = 0; d < 3; ++d)
     f[d] = mstar * (abar1[d] - abar2[d]);
-  Fint_n = ContactMath::dot(f, n);
+  Fint_n = contact_math::dot(f, n);
   for (int d = 0; d < 3; ++d)
     Fint_s[d] = f[d] - Fint_n * n[d];
 }
@@ -167,7 +167,7 @@ KOKKOS_INLINE_FUNCTION void internalForceTerm(const Real abar1[3], const Real ab
 KOKKOS_INLINE_FUNCTION Real contactTimeStep(const JointParams &p, const CpState &s, Real Vn,
                                             Real dt_el, Real mu_star, Real rho_bar)
 {
-  using namespace ContactMath;
+  using namespace contact_math;
   if (p.C_safe > 1e30)
     return 1e300;
   const Real E_pred = jointModulus(p, s.u + max(Vn, 0.0) * dt_el, s.umax);
@@ -178,9 +178,9 @@ KOKKOS_INLINE_FUNCTION Real contactTimeStep(const JointParams &p, const CpState 
 
 // ------------------------------------------------------------------------- update pieces ----
 
-namespace JointImpl
+namespace joint_impl
 {
-using namespace ContactMath;
+using namespace contact_math;
 
 KOKKOS_INLINE_FUNCTION Real tensileLimit(const JointParams &p, const CpState &s, Real Ac)
 {
@@ -320,11 +320,11 @@ KOKKOS_INLINE_FUNCTION Real normalImplicit(const JointParams &p, CpState &s, Rea
   return F;
 }
 
-} // namespace JointImpl
+} // namespace joint_impl
 
 // ----------------------------------------------------------------------------------- shear ----
 
-namespace JointImpl
+namespace joint_impl
 {
 
 /// \brief Section 7 E4, generalised to the implicit option by (D13): trial force, Coulomb cap
@@ -456,7 +456,7 @@ KOKKOS_INLINE_FUNCTION CpStepResult jointUpdate(const JointParams &p, CpState &s
   return r;
 }
 
-} // namespace JointImpl
+} // namespace joint_impl
 
 // ---------------------------------------------------------------------------- public API ----
 
@@ -465,7 +465,7 @@ KOKKOS_INLINE_FUNCTION CpStepResult jointUpdate(const JointParams &p, CpState &s
 KOKKOS_INLINE_FUNCTION CpStepResult updateExplicit(const JointParams &p, CpState &s,
                                                    const CpKinematics &k)
 {
-  return JointImpl::jointUpdate(p, s, k, false);
+  return joint_impl::jointUpdate(p, s, k, false);
 }
 
 /// \brief Quasi-implicit update, section 10: normal (20)-(23) with the end-of-step force, shear
@@ -475,7 +475,7 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateExplicit(const JointParams &p, CpState
 KOKKOS_INLINE_FUNCTION CpStepResult updateImplicit(const JointParams &p, CpState &s,
                                                    const CpKinematics &k)
 {
-  return JointImpl::jointUpdate(p, s, k, true);
+  return joint_impl::jointUpdate(p, s, k, true);
 }
 
 } // namespace scpdyn

@@ -3,16 +3,16 @@
 /// \brief Planar polygon kernels of the common-plane overlap (scp-method.md 4.4): shoelace area
 /// and first moments, convexity test, Sutherland-Hodgman clipping and the signed fan split of a
 /// non-convex polygon. Device-callable, fixed-size buffers, no allocation.
-#include "contact/ContactParams.hpp"
+#include "contact/CommonPlaneState.hpp"
 
 namespace scpdyn
 {
 
 constexpr int kMaxPolyVerts = 16; ///< overlap buffer; clipConvex needs n_subject + n_clip <= 16
 
-namespace CpGeom
+namespace cp_geometry
 {
-using namespace ContactMath;
+using namespace contact_math;
 
 KOKKOS_INLINE_FUNCTION Real cross2(Real ax, Real ay, Real bx, Real by) { return ax * by - ay * bx; }
 
@@ -181,5 +181,5 @@ KOKKOS_INLINE_FUNCTION void overlapMoments(const Real P[][2], int np, const Real
     }
 }
 
-} // namespace CpGeom
+} // namespace cp_geometry
 } // namespace scpdyn

@@ -24,9 +24,9 @@ void Solver::setupGauges()
   {
     const GaugeSpec &spec = _deck.gauges[g];
     const std::string key = _deck.path + ": gauges[" + std::to_string(g) + "]";
-    if (spec.kind == "joint" && !_contact)
+    if (spec.kind == GaugeKind::Joint && !_contact)
       throw InputError(key + ".kind: a joint gauge needs a 'contact' section");
-    const bool on_element = spec.kind == "element";
+    const bool on_element = spec.kind == GaugeKind::Element;
     Index id = spec.id;
     if (spec.has_point)
     {
@@ -76,13 +76,13 @@ void Solver::setupGauges()
                   : _dd->owned[size_t(local)] != 0   ? local
                                                      : -1;
     }
-    const bool joint = spec.kind == "joint"; // the nearest node carries it with the material
+    const bool joint = spec.kind == GaugeKind::Joint; // the nearest node carries it with the material
     const auto &names = gaugeQuantities(spec.kind);
     for (const auto &q : spec.quantities)
     {
       const int code = int(std::find(names.begin(), names.end(), q) - names.begin());
       if (code == int(names.size()))
-        throw InputError(key + ".quantities: unknown quantity '" + q + "' for a " + spec.kind +
+        throw InputError(key + ".quantities: unknown quantity '" + q + "' for a " + deckName(spec.kind) +
                          " gauge");
       // a joint gauge's slot is filled by jointGaugeValues(); the kernel leaves it at 0
       const Index slot_id = joint ? -1 : device_id;

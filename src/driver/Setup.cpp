@@ -28,22 +28,11 @@ namespace
 /// the corner array and the gather pass are skipped.
 bool cornerGather(const Deck &deck)
 {
-  return deck.scatter == "gather" && ExecSpace().concurrency() > 1;
+  return deck.scatter == ScatterMode::Gather && ExecSpace().concurrency() > 1;
 }
 } // namespace
 namespace
 {
-
-ElementType elementTypeOf(const std::string &name)
-{
-  if (name == "line2")
-    return ElementType::Line2;
-  if (name == "quad4")
-    return ElementType::Quad4;
-  if (name == "hex8")
-    return ElementType::Hex8;
-  return ElementType::Tet4;
-}
 
 int materialIndex(const Deck &deck, const std::string &name)
 {
@@ -119,10 +108,10 @@ void Solver::setupMesh()
     try
     {
       const MeshSpec &m = spec.mesh;
-      if (m.type == "block")
-        appendBlock(_mesh, spec.name, elementTypeOf(m.element), m.elements, m.origin, m.size);
-      else if (m.type == "brick_wall")
-        appendBrickWall(_mesh, spec.name, elementTypeOf(m.element), m.elements, m.origin,
+      if (m.type == MeshType::Block)
+        appendBlock(_mesh, spec.name, m.element, m.elements, m.origin, m.size);
+      else if (m.type == MeshType::BrickWall)
+        appendBrickWall(_mesh, spec.name, m.element, m.elements, m.origin,
                         m.brick_size, m.count, m.stagger);
       else
       {
@@ -308,7 +297,7 @@ void Solver::setupNodeSweep()
 #else
   const bool ordered = ExecSpace().concurrency() == 1 || cornerGather(_deck);
 #endif
-  if (_deck.node_update != "fused" || !ordered)
+  if (_deck.node_update != NodeUpdateMode::Fused || !ordered)
     return;
   // every room that acts on nodes between steps 6 and 12 declares them (LateNodes.hpp)
   LateNodes late(_nodes.count);
@@ -380,7 +369,7 @@ void Solver::setupBoundaryConditions()
     const BoundaryConditionSpec &b = _deck.boundary_conditions[i];
     const std::string key = _deck.path + ": boundary_conditions[" + std::to_string(i) + "]";
     const int fn = findFunction(_deck.functions, b.function, key + ".function");
-    if (b.type == "pressure")
+    if (b.type == ConditionType::Pressure)
     {
       auto it = _face_sets.find(b.set);
       if (it == _face_sets.end())
@@ -407,7 +396,7 @@ void Solver::setupBoundaryConditions()
     auto it = _node_sets.find(b.set);
     if (it == _node_sets.end())
       throw InputError(key + ".node_set: unknown node set '" + b.set + "'");
-    if (b.type == "velocity")
+    if (b.type == ConditionType::Velocity)
     {
       const int k = int(_bc.velocity_value.size());
       _bc.velocity_value.push_back(b.value);
@@ -542,7 +531,7 @@ void Solver::setupInitialState()
 
   _controls.geometry = _deck.geometry;
   _controls.hourglass =
-      _deck.hourglass_type == "stiffness" ? HourglassType::Stiffness : HourglassType::Viscous;
+      _deck.hourglass_type == HourglassForm::Stiffness ? HourglassType::Stiffness : HourglassType::Viscous;
   _controls.hourglass_coefficient = _deck.hourglass_coefficient;
   _controls.q_linear = _deck.bulk_viscosity_linear;
   _controls.q_quadratic = _deck.bulk_viscosity_quadratic;

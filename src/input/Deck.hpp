@@ -2,7 +2,9 @@
 /// \file Deck.hpp
 /// \brief The typed, validated input deck. Parsed once from YAML (DeckParser.cpp); nothing in
 /// the cycle reads YAML. All values SI. Every key is documented in docs/input.md.
+#include "core/InputError.hpp"
 #include "core/Types.hpp"
+#include "material/MaterialSpec.hpp" // materials[]: the material room owns their contents
 
 #include <array>
 #include <map>
@@ -12,12 +14,50 @@
 namespace scpdyn
 {
 
-/// \brief Thrown for any input error; `what()` names the key path (and line when known).
-/// main() prints it and exits with status 2.
-struct InputError : std::runtime_error
+/// \brief The deck's choices, stored as enums once the parser has checked the word (the cycle
+/// compares enums, never deck text); deckName() gives the word back for the resolved deck and
+/// for messages.
+enum class MeshType : int
 {
-  using std::runtime_error::runtime_error;
+  Block,
+  BrickWall,
+  Gmsh
 };
+enum class ConditionType : int
+{
+  Velocity,
+  Force,
+  Pressure
+};
+enum class GaugeKind : int
+{
+  Node,
+  Element,
+  Joint
+};
+enum class HourglassForm : int
+{
+  Viscous,
+  Stiffness
+};
+enum class ScatterMode : int
+{
+  Gather, ///< deterministic: corner gather with threads, plain adds on one thread
+  Atomic
+};
+enum class NodeUpdateMode : int
+{
+  Fused,   ///< step 12 in step 6's sweep where the order allows it
+  Separate
+};
+
+const char *deckName(MeshType t);      ///< block | brick_wall | gmsh
+const char *deckName(ConditionType t); ///< velocity | force | pressure
+const char *deckName(GaugeKind k);     ///< node | element | joint
+const char *deckName(HourglassForm f); ///< viscous | stiffness
+const char *deckName(ScatterMode s);   ///< gather | atomic
+const char *deckName(NodeUpdateMode m); ///< fused | separate
+const char *deckName(ElementType t);   ///< line2 | quad4 | hex8 | tet4
 
 /// \brief Piecewise-linear time function (constant beyond its ends).
 struct TimeFunction
@@ -26,26 +66,11 @@ struct TimeFunction
   std::vector<Real> t, value;
 };
 
-/// \brief A material as written in the deck: model name plus numeric parameters. The material
-/// room (material/MaterialLibrary.cpp) knows which keys each model takes, checks them and turns
-/// them into the POD MaterialParams the kernels use.
-struct MaterialSpec
-{
-  std::string name;
-  std::string model = "elastic";     ///< elastic | elastic_plastic | ... (docs/input.md)
-  std::string eos = "linear";        ///< linear | mie_gruneisen | ...
-  std::map<std::string, Real> values;   ///< every numeric key of the material (and of its eos:
-                                        ///< eos keys are stored as "eos.<key>")
-  std::map<std::string, int> lines;     ///< YAML line of each key, for error messages
-  int index = 0;                         ///< position in the deck's materials list
-  int line = 0;
-};
-
 /// \brief How a part's mesh is made.
 struct MeshSpec
 {
-  std::string type = "block";      ///< block | brick_wall | gmsh
-  std::string element = "quad4";   ///< line2 | quad4 | hex8 | tet4 (block, brick_wall)
+  MeshType type = MeshType::Block;
+  ElementType element = ElementType::Quad4; ///< block, brick_wall (gmsh: from the file)
   std::array<int, 3> elements{{1, 1, 1}};  ///< block: cells per direction
   std::array<Real, 3> origin{{0, 0, 0}};
   std::array<Real, 3> size{{0, 0, 0}};
@@ -77,7 +102,7 @@ struct SetSpec
 
 struct BoundaryConditionSpec
 {
-  std::string type;     ///< velocity | force | pressure
+  ConditionType type = ConditionType::Velocity;
   std::string set;      ///< node set (velocity, force) or face set (pressure)
   int component = -1;   ///< velocity: 0,1,2 for x,y,z
   Real value = 0;       ///< velocity (m/s) or pressure (Pa)
@@ -88,7 +113,7 @@ struct BoundaryConditionSpec
 struct GaugeSpec
 {
   std::string name;
-  std::string kind = "node"; ///< node | element | joint
+  GaugeKind kind = GaugeKind::Node;
   Index id = -1;             ///< node or element id (0-based), or -1 when `point` is given
   bool has_point = false;
   std::array<Real, 3> point{{0, 0, 0}}; ///< nearest node / containing-or-nearest element
@@ -117,11 +142,12 @@ inline const std::vector<std::string> &jointGaugeQuantities()
                                                  "slip",          "count"};
   return names;
 }
-/// \brief The quantity list of a gauge kind ("node", "element" or "joint").
-inline const std::vector<std::string> &gaugeQuantities(const std::string &kind)
+/// \brief The quantity list of a gauge kind.
+inline const std::vector<std::string> &gaugeQuantities(GaugeKind kind)
 {
-  return kind == "node" ? nodeGaugeQuantities() : kind == "element" ? elementGaugeQuantities()
-                                                                    : jointGaugeQuantities();
+  return kind == GaugeKind::Node      ? nodeGaugeQuantities()
+         : kind == GaugeKind::Element ? elementGaugeQuantities()
+                                      : jointGaugeQuantities();
 }
 
 /// \brief One contact surface (docs/input.md, `contact.surfaces[]`): the external faces it covers
@@ -179,11 +205,11 @@ struct Deck
 
   // numerics
   Real hourglass_coefficient = 0.05;
-  std::string hourglass_type = "viscous"; ///< viscous | stiffness
+  HourglassForm hourglass_type = HourglassForm::Viscous;
   Real bulk_viscosity_linear = 0.06;
   Real bulk_viscosity_quadratic = 1.5;
-  std::string scatter = "gather";         ///< gather (deterministic) | atomic
-  std::string node_update = "fused";      ///< fused (step 12 in step 6's sweep) | separate
+  ScatterMode scatter = ScatterMode::Gather;
+  NodeUpdateMode node_update = NodeUpdateMode::Fused;
   std::array<Real, 3> gravity{{0, 0, 0}};
 
   // output

@@ -10,7 +10,7 @@
 
 namespace scpdyn
 {
-namespace Impl
+namespace input_impl
 {
 namespace
 {
@@ -59,17 +59,8 @@ SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool che
   claimName(seen, m["name"], s.name);
   if (m.exactlyOne({"part", "face_set"}) == "part")
   {
-    const YamlValue p = m["part"];
-    s.part = p.string();
-    if (s.part.back() == '*')
-    {
-      const std::string prefix = s.part.substr(0, s.part.size() - 1);
-      if (std::none_of(names.parts.begin(), names.parts.end(),
-                       [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
-        p.fail("no part name starts with '" + prefix + "'");
-    }
-    else
-      checkReference(p, s.part, "part", names.parts);
+    s.part = m["part"].string();
+    checkPartReference(m["part"], s.part, names);
   }
   else
   {
@@ -154,11 +145,11 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
   if (!c.has("surfaces"))
     c.missing("surfaces");
   const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(),
-                                       [](const PartSpec &p) { return p.mesh.type == "gmsh"; });
+                                       [](const PartSpec &p) { return p.mesh.type == MeshType::Gmsh; });
   std::map<std::string, int> seen;
   for (const YamlValue &item : c["surfaces"].list(1))
     spec.surfaces.push_back(parseSurface(item, names, check_sets, seen));
 }
 
-} // namespace Impl
+} // namespace input_impl
 } // namespace scpdyn

@@ -3,7 +3,7 @@
 /// schema's "which keys may appear where" lives in the key lists passed to YamlValue::map.
 #include "input/DeckSections.hpp"
 #include "input/YamlReader.hpp"
-#include "material/MaterialLibrary.hpp"
+#include "material/MaterialSpec.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -12,7 +12,33 @@
 
 namespace scpdyn
 {
-namespace Impl
+
+const char *deckName(MeshType t)
+{
+  return t == MeshType::Block ? "block" : t == MeshType::BrickWall ? "brick_wall" : "gmsh";
+}
+const char *deckName(ConditionType t)
+{
+  return t == ConditionType::Velocity ? "velocity"
+         : t == ConditionType::Force  ? "force"
+                                      : "pressure";
+}
+const char *deckName(GaugeKind k)
+{
+  return k == GaugeKind::Node ? "node" : k == GaugeKind::Element ? "element" : "joint";
+}
+const char *deckName(HourglassForm f) { return f == HourglassForm::Viscous ? "viscous" : "stiffness"; }
+const char *deckName(ScatterMode s) { return s == ScatterMode::Gather ? "gather" : "atomic"; }
+const char *deckName(NodeUpdateMode m) { return m == NodeUpdateMode::Fused ? "fused" : "separate"; }
+const char *deckName(ElementType t)
+{
+  return t == ElementType::Line2   ? "line2"
+         : t == ElementType::Quad4 ? "quad4"
+         : t == ElementType::Hex8  ? "hex8"
+                                   : "tet4";
+}
+
+namespace input_impl
 {
 
 bool isPositive(Real x) { return x > 0; }
@@ -67,11 +93,11 @@ void restrictKeys(const YamlMap &m, const std::vector<std::string> &allowed,
       m[e.key].fail("unknown key '" + e.key + "' for " + context + suggestion(e.key, allowed));
 }
 
-} // namespace Impl
+} // namespace input_impl
 
 namespace
 {
-using namespace Impl;
+using namespace input_impl;
 namespace fs = std::filesystem;
 
 void parseTime(const YamlMap &root, Deck &deck)
@@ -99,7 +125,8 @@ void parseNumerics(const YamlMap &root, Deck &deck)
   if (n.has("hourglass"))
   {
     const YamlMap h = n["hourglass"].map({"type", "coefficient"});
-    deck.hourglass_type = h.choice("type", {"viscous", "stiffness"}, deck.hourglass_type);
+    deck.hourglass_type = readChoice(h, "type", {HourglassForm::Viscous, HourglassForm::Stiffness},
+                                     deck.hourglass_type);
     deck.hourglass_coefficient =
         readReal(h, "coefficient", deck.hourglass_coefficient, isNonNegative, ">= 0");
   }
@@ -111,8 +138,9 @@ void parseNumerics(const YamlMap &root, Deck &deck)
     deck.bulk_viscosity_quadratic =
         readReal(q, "quadratic", deck.bulk_viscosity_quadratic, isNonNegative, ">= 0");
   }
-  deck.scatter = n.choice("scatter", {"atomic", "gather"}, deck.scatter);
-  deck.node_update = n.choice("node_update", {"fused", "separate"}, deck.node_update);
+  deck.scatter = readChoice(n, "scatter", {ScatterMode::Atomic, ScatterMode::Gather}, deck.scatter);
+  deck.node_update = readChoice(n, "node_update", {NodeUpdateMode::Fused, NodeUpdateMode::Separate},
+                                deck.node_update);
 }
 
 void parseOutput(const YamlMap &root, Deck &deck, const std::string &stem)

@@ -7,18 +7,14 @@
 
 namespace scpdyn
 {
-namespace Impl
+namespace input_impl
 {
 namespace
 {
 namespace fs = std::filesystem;
 
-const char *const kDefaultElement[] = {"", "line2", "quad4", "hex8"};
-
-int elementDimension(const std::string &element)
-{
-  return element == "line2" ? 1 : element == "quad4" ? 2 : 3;
-}
+const ElementType kDefaultElement[] = {ElementType::Quad4, ElementType::Line2, ElementType::Quad4,
+                                       ElementType::Hex8};
 
 std::array<Real, 3> positiveVector(const YamlMap &m, const std::string &key, int dim)
 {
@@ -36,11 +32,11 @@ MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
   const YamlMap m = value.map({"type", "element", "elements", "origin", "size", "brick_size",
                                "count", "stagger", "file"});
   MeshSpec mesh;
-  mesh.type = m.choice("type", {"block", "brick_wall", "gmsh"}, "block");
-  if (mesh.type == "gmsh")
+  mesh.type = readChoice(m, "type", {MeshType::Block, MeshType::BrickWall, MeshType::Gmsh},
+                         MeshType::Block);
+  if (mesh.type == MeshType::Gmsh)
   {
     restrictKeys(m, {"type", "file"}, "mesh type 'gmsh'");
-    mesh.element = ""; // the element types come from the file
     const YamlValue f = m["file"];
     const fs::path file = fs::absolute(deck_dir / f.string()).lexically_normal();
     std::error_code ec;
@@ -49,21 +45,24 @@ MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
     mesh.file = file.string();
     return mesh;
   }
-  if (mesh.type == "block")
+  if (mesh.type == MeshType::Block)
     restrictKeys(m, {"type", "element", "elements", "origin", "size"}, "mesh type 'block'");
   else
     restrictKeys(m, {"type", "element", "elements", "origin", "brick_size", "count", "stagger"},
                  "mesh type 'brick_wall'");
 
-  mesh.element = m.choice("element", {"line2", "quad4", "hex8", "tet4"}, kDefaultElement[dim]);
-  if (elementDimension(mesh.element) != dim)
-    m["element"].fail("element '" + mesh.element + "' is " +
-                      std::to_string(elementDimension(mesh.element)) +
+  mesh.element = readChoice(
+      m, "element", {ElementType::Line2, ElementType::Quad4, ElementType::Hex8, ElementType::Tet4},
+      kDefaultElement[dim]);
+  if (dimensionOf(mesh.element) != dim)
+    m["element"].fail(std::string("element '") + deckName(mesh.element) + "' is " +
+                      std::to_string(dimensionOf(mesh.element)) +
                       "-dimensional but the deck has dimension " + std::to_string(dim) +
-                      " (expected " + (dim == 3 ? "hex8 or tet4" : kDefaultElement[dim]) + ")");
+                      " (expected " + (dim == 3 ? "hex8 or tet4" : deckName(kDefaultElement[dim])) +
+                      ")");
   if (m.has("origin"))
     mesh.origin = m["origin"].realVector(dim);
-  if (mesh.type == "block")
+  if (mesh.type == MeshType::Block)
   {
     mesh.elements = m["elements"].intVector(dim, 1, 1);
     mesh.size = positiveVector(m, "size", dim);
@@ -91,17 +90,8 @@ void parseSets(const YamlMap &root, const std::string &key, int dim, const DeckN
     claimName(seen, m["name"], set.name);
     if (m.exactlyOne({"part", "box"}) == "part")
     {
-      const YamlValue p = m["part"];
-      set.part = p.string();
-      if (set.part.back() == '*')
-      {
-        const std::string prefix = set.part.substr(0, set.part.size() - 1);
-        if (std::none_of(names.parts.begin(), names.parts.end(),
-                         [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
-          p.fail("no part name starts with '" + prefix + "'");
-      }
-      else
-        checkReference(p, set.part, "part", names.parts);
+      set.part = m["part"].string();
+      checkPartReference(m["part"], set.part, names);
     }
     else
     {
@@ -123,20 +113,21 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
                     BoundaryConditionSpec &bc)
 {
   const YamlMap m = item.openMap();
-  bc.type = m["type"].choice({"velocity", "force", "pressure"});
-  const std::string set_key = bc.type == "pressure" ? "face_set" : "node_set";
-  if (bc.type == "velocity")
+  bc.type = choiceOf(m["type"],
+                     {ConditionType::Velocity, ConditionType::Force, ConditionType::Pressure});
+  const std::string set_key = bc.type == ConditionType::Pressure ? "face_set" : "node_set";
+  if (bc.type == ConditionType::Velocity)
     restrictKeys(m, {"type", "node_set", "component", "value", "function"},
                  "boundary condition type 'velocity'");
   else
     restrictKeys(m, {"type", set_key, "value", "function"},
-                 "boundary condition type '" + bc.type + "'");
+                 std::string("boundary condition type '") + deckName(bc.type) + "'");
 
   bc.set = m[set_key].string();
   if (check_sets) // with gmsh meshes, sets may also come from the mesh file: the driver checks
     checkReference(m[set_key], bc.set, set_key == "face_set" ? "face set" : "node set",
                    set_key == "face_set" ? names.face_sets : names.node_sets);
-  if (bc.type == "velocity")
+  if (bc.type == ConditionType::Velocity)
   {
     const std::string c = m["component"].choice({"x", "y", "z"});
     bc.component = c == "x" ? 0 : c == "y" ? 1 : 2;
@@ -145,7 +136,7 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
                           std::to_string(dim) + " (expected " + (dim == 1 ? "x" : "x or y") +
                           ")");
   }
-  if (bc.type == "force")
+  if (bc.type == ConditionType::Force)
     bc.vector = m["value"].realVector(dim);
   else
     bc.value = requireReal(m, "value", nullptr, "");
@@ -157,6 +148,19 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
 }
 
 } // namespace
+
+void checkPartReference(const YamlValue &v, const std::string &part, const DeckNames &names)
+{
+  if (part.back() != '*')
+  {
+    checkReference(v, part, "part", names.parts);
+    return;
+  }
+  const std::string prefix = part.substr(0, part.size() - 1);
+  if (std::none_of(names.parts.begin(), names.parts.end(),
+                   [&](const auto &kv) { return kv.first.rfind(prefix, 0) == 0; }))
+    v.fail("no part name starts with '" + prefix + "'");
+}
 
 void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::path &deck_dir)
 {
@@ -185,7 +189,7 @@ void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names)
   if (!root.has("boundary_conditions"))
     return;
   const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(),
-                                       [](const PartSpec &p) { return p.mesh.type == "gmsh"; });
+                                       [](const PartSpec &p) { return p.mesh.type == MeshType::Gmsh; });
   for (const YamlValue &item : root["boundary_conditions"].list())
   {
     BoundaryConditionSpec bc;
@@ -210,20 +214,21 @@ void parseGauges(const YamlMap &root, Deck &deck)
     {
       g.has_point = true;
       g.point = m["point"].realVector(deck.dimension);
-      g.kind = m.choice("kind", {"node", "element", "joint"}, "node");
+      g.kind = readChoice(m, "kind", {GaugeKind::Node, GaugeKind::Element, GaugeKind::Joint},
+                          GaugeKind::Node);
     }
     else
     {
       if (m.has("kind"))
         m["kind"].fail("only used with 'point' (a gauge given by '" + where +
                        "' is a " + where + " gauge)");
-      g.kind = where;
+      g.kind = where == "node" ? GaugeKind::Node : GaugeKind::Element;
       const long id = m[where].integer();
       if (id < 0)
         m[where].fail("must be an id >= 0, got " + m[where].text());
       g.id = static_cast<Index>(id);
     }
-    if (g.kind == "joint")
+    if (g.kind == GaugeKind::Joint)
     {
       if (!root.has("contact"))
         m["kind"].fail("a joint gauge needs a 'contact' section (it reads the common planes)");
@@ -233,14 +238,14 @@ void parseGauges(const YamlMap &root, Deck &deck)
       m["radius"].fail("only used by joint gauges (kind: joint)");
     const auto &mine = gaugeQuantities(g.kind);
     std::vector<std::string> other;
-    for (const char *kind : {"node", "element", "joint"})
+    for (GaugeKind kind : {GaugeKind::Node, GaugeKind::Element, GaugeKind::Joint})
       if (&gaugeQuantities(kind) != &mine)
         other.insert(other.end(), gaugeQuantities(kind).begin(), gaugeQuantities(kind).end());
     for (const YamlValue &q : m["quantities"].list(1))
     {
       const std::string name = q.string();
       if (std::find(other.begin(), other.end(), name) != other.end())
-        q.fail("'" + name + "' is not a " + g.kind + " quantity (" + g.kind +
+        q.fail("'" + name + "' is not a " + deckName(g.kind) + " quantity (" + deckName(g.kind) +
                " quantities: " + joined(mine) + ")");
       q.choice(mine);
       if (std::find(g.quantities.begin(), g.quantities.end(), name) != g.quantities.end())
@@ -251,5 +256,5 @@ void parseGauges(const YamlMap &root, Deck &deck)
   }
 }
 
-} // namespace Impl
+} // namespace input_impl
 } // namespace scpdyn

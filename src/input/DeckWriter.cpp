@@ -16,7 +16,7 @@ namespace scpdyn
 namespace
 {
 
-using Impl::formatReal;
+using input_impl::formatReal;
 
 // Reals go out as their shortest exact decimal text (a plain scalar), so that they read back
 // bit for bit; strings are always double-quoted, so a title like "2" or "yes" stays a string.
@@ -52,18 +52,18 @@ void vector(YAML::Emitter &out, const char *key, const std::array<T, 3> &v, int 
 void writeMesh(YAML::Emitter &out, const MeshSpec &m, int dim)
 {
   out << YAML::Key << "mesh" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "type" << YAML::Value << m.type;
-  if (m.type == "gmsh")
+  out << YAML::Key << "type" << YAML::Value << deckName(m.type);
+  if (m.type == MeshType::Gmsh)
   {
     out << YAML::Key << "file" << YAML::Value;
     text(out, m.file);
     out << YAML::EndMap;
     return;
   }
-  out << YAML::Key << "element" << YAML::Value << m.element;
+  out << YAML::Key << "element" << YAML::Value << deckName(m.element);
   vector(out, "elements", m.elements, dim);
   vector(out, "origin", m.origin, dim);
-  if (m.type == "block")
+  if (m.type == MeshType::Block)
     vector(out, "size", m.size, dim);
   else
   {
@@ -120,12 +120,12 @@ void writeMaterial(YAML::Emitter &out, const MaterialSpec &m)
 
 void writeCondition(YAML::Emitter &out, const BoundaryConditionSpec &bc, int dim)
 {
-  out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << bc.type;
-  out << YAML::Key << (bc.type == "pressure" ? "face_set" : "node_set") << YAML::Value;
+  out << YAML::BeginMap << YAML::Key << "type" << YAML::Value << deckName(bc.type);
+  out << YAML::Key << (bc.type == ConditionType::Pressure ? "face_set" : "node_set") << YAML::Value;
   text(out, bc.set);
-  if (bc.type == "velocity")
+  if (bc.type == ConditionType::Velocity)
     out << YAML::Key << "component" << YAML::Value << std::string(1, "xyz"[bc.component]);
-  if (bc.type == "force")
+  if (bc.type == ConditionType::Force)
     vector(out, "value", bc.vector, dim);
   else
     real(out << YAML::Key << "value" << YAML::Value, bc.value);
@@ -141,12 +141,12 @@ void writeGauge(YAML::Emitter &out, const GaugeSpec &g, int dim)
   if (g.has_point)
   {
     vector(out, "point", g.point, dim);
-    out << YAML::Key << "kind" << YAML::Value << g.kind;
-    if (g.kind == "joint" && g.radius > 0)
+    out << YAML::Key << "kind" << YAML::Value << deckName(g.kind);
+    if (g.kind == GaugeKind::Joint && g.radius > 0)
       real(out << YAML::Key << "radius" << YAML::Value, g.radius);
   }
   else
-    out << YAML::Key << g.kind << YAML::Value << g.id;
+    out << YAML::Key << deckName(g.kind) << YAML::Value << g.id;
   out << YAML::Key << "quantities" << YAML::Value << YAML::Flow << g.quantities;
   out << YAML::EndMap;
 }
@@ -229,13 +229,13 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
 
   out << YAML::Key << "numerics" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "hourglass" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "type" << YAML::Value << deck.hourglass_type;
+  out << YAML::Key << "type" << YAML::Value << deckName(deck.hourglass_type);
   real(out << YAML::Key << "coefficient" << YAML::Value, deck.hourglass_coefficient);
   out << YAML::EndMap << YAML::Key << "bulk_viscosity" << YAML::Value << YAML::BeginMap;
   real(out << YAML::Key << "linear" << YAML::Value, deck.bulk_viscosity_linear);
   real(out << YAML::Key << "quadratic" << YAML::Value, deck.bulk_viscosity_quadratic);
-  out << YAML::EndMap << YAML::Key << "scatter" << YAML::Value << deck.scatter;
-  out << YAML::Key << "node_update" << YAML::Value << deck.node_update << YAML::EndMap;
+  out << YAML::EndMap << YAML::Key << "scatter" << YAML::Value << deckName(deck.scatter);
+  out << YAML::Key << "node_update" << YAML::Value << deckName(deck.node_update) << YAML::EndMap;
 
   vector(out, "gravity", deck.gravity, dim);
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;

@@ -10,7 +10,7 @@
 
 namespace scpdyn
 {
-namespace Impl
+namespace input_impl
 {
 namespace
 {
@@ -317,5 +317,5 @@ std::string formatReal(Real x)
   return buf;
 }
 
-} // namespace Impl
+} // namespace input_impl
 } // namespace scpdyn

@@ -14,7 +14,7 @@
 
 namespace scpdyn
 {
-namespace Impl
+namespace input_impl
 {
 
 class YamlMap;
@@ -105,5 +105,5 @@ std::string joined(const std::vector<std::string> &words);
 /// \brief Shortest decimal text that reads back to exactly `x`.
 std::string formatReal(Real x);
 
-} // namespace Impl
+} // namespace input_impl
 } // namespace scpdyn

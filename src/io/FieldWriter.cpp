@@ -169,17 +169,9 @@ void FieldWriter::open(const std::string &dir)
     ensureDirectory(dir);
   if (_distributed)
     MPI_Barrier(_comm); // the directory exists before any rank opens the file
-  {
-    Handle fapl(makeFileAccessList(_distributed ? &_comm : nullptr), H5Pclose);
-    _file = createFieldFile(_h5_path, fapl);
-  }
-  _dxpl = H5Pcreate(H5P_DATASET_XFER);
+  openFile(_h5_path, _distributed ? &_comm : nullptr, _file, _dxpl);
   try
   {
-    check(_dxpl < 0 ? -1 : 0, "create a transfer property list", _h5_path);
-    if (_distributed)
-      check(H5Pset_dxpl_mpio(_dxpl, H5FD_MPIO_COLLECTIVE), "select collective transfers",
-            _h5_path);
     writeMesh();
     check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush the mesh", _h5_path);
     if (root())
@@ -188,10 +180,7 @@ void FieldWriter::open(const std::string &dir)
   catch (...)
   {
     // The destructor does not run for a throwing constructor: release the handles here.
-    H5Fclose(_file);
-    if (_dxpl >= 0)
-      H5Pclose(_dxpl);
-    _file = _dxpl = -1;
+    releaseFile(_file, _dxpl);
     throw;
   }
 }
@@ -239,13 +228,7 @@ FieldWriter::~FieldWriter()
 
 void FieldWriter::close()
 {
-  if (_file < 0)
-    return;
-  const herr_t flushed = H5Fflush(_file, H5F_SCOPE_GLOBAL);
-  const herr_t closed = H5Fclose(_file);
-  H5Pclose(_dxpl);
-  _file = _dxpl = -1;
-  check(flushed < 0 || closed < 0 ? -1 : 0, "close the file", _h5_path);
+  closeFile(_file, _dxpl, _h5_path);
 }
 
 void FieldWriter::writeMesh()

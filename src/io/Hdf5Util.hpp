@@ -77,6 +77,50 @@ inline void check(herr_t status, const std::string &what, const std::string &pat
     throw std::runtime_error("FieldWriter: HDF5 failed to " + what + " in '" + path + "'");
 }
 
+/// Releases an open file and its transfer list without checks (after a failure), leaving -1.
+inline void releaseFile(hid_t &file, hid_t &dxpl)
+{
+  H5Fclose(file);
+  if (dxpl >= 0)
+    H5Pclose(dxpl);
+  file = dxpl = -1;
+}
+
+/// The one place that opens an output file: created (truncated) with the driver of
+/// makeFileAccessList(comm), and its dataset transfer list, collective with `comm`.
+inline void openFile(const std::string &path, const MPI_Comm *comm, hid_t &file, hid_t &dxpl)
+{
+  {
+    Handle fapl(makeFileAccessList(comm), H5Pclose);
+    file = createFieldFile(path, fapl);
+  }
+  dxpl = H5Pcreate(H5P_DATASET_XFER);
+  try
+  {
+    check(dxpl < 0 ? -1 : 0, "create a transfer property list", path);
+    if (comm)
+      check(H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE), "select collective transfers", path);
+  }
+  catch (...)
+  {
+    releaseFile(file, dxpl);
+    throw;
+  }
+}
+
+/// Flushes and closes the file and releases its transfer list (nothing when closed already);
+/// throws when the flush or the close failed.
+inline void closeFile(hid_t &file, hid_t &dxpl, const std::string &path)
+{
+  if (file < 0)
+    return;
+  const herr_t flushed = H5Fflush(file, H5F_SCOPE_GLOBAL);
+  const herr_t closed = H5Fclose(file);
+  H5Pclose(dxpl);
+  file = dxpl = -1;
+  check(flushed < 0 || closed < 0 ? -1 : 0, "close the file", path);
+}
+
 inline hid_t createGroup(hid_t loc, const std::string &name, const std::string &path)
 {
   const hid_t g = H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);

@@ -19,24 +19,16 @@ PointSetWriter::PointSetWriter(const std::string &dir, const std::string &name, 
       _xmf_path(dir + "/" + name + ".xmf"), _empty_value(empty_value)
 {
   ensureDirectory(dir);
-  {
-    Handle fapl(makeFileAccessList(), H5Pclose);
-    _file = createFieldFile(_h5_path, fapl);
-  }
-  _dxpl = H5Pcreate(H5P_DATASET_XFER);
+  openFile(_h5_path, nullptr, _file, _dxpl);
   try
   {
-    check(_dxpl < 0 ? -1 : 0, "create a transfer property list", _h5_path);
     Handle frames(createGroup(_file, "frames", _h5_path), H5Gclose);
     check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush", _h5_path);
     writeXdmf();
   }
   catch (...)
   {
-    H5Fclose(_file);
-    if (_dxpl >= 0)
-      H5Pclose(_dxpl);
-    _file = _dxpl = -1;
+    releaseFile(_file, _dxpl);
     throw;
   }
 }
@@ -54,13 +46,7 @@ PointSetWriter::~PointSetWriter()
 
 void PointSetWriter::close()
 {
-  if (_file < 0)
-    return;
-  const herr_t flushed = H5Fflush(_file, H5F_SCOPE_GLOBAL);
-  const herr_t closed = H5Fclose(_file);
-  H5Pclose(_dxpl);
-  _file = _dxpl = -1;
-  check(flushed < 0 || closed < 0 ? -1 : 0, "close the file", _h5_path);
+  closeFile(_file, _dxpl, _h5_path);
 }
 
 void PointSetWriter::write(const PointFrame &frame)

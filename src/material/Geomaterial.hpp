@@ -54,7 +54,7 @@ KOKKOS_INLINE_FUNCTION Real geoBulk(const MaterialParams &p, Real x)
   const Real tl = p.model_params[kGeoThetaLock];
   if (tl <= 0)
     return p.bulk;
-  return p.bulk + (p.model_params[kGeoKs] - p.bulk) * MaterialMath::clamp(x / tl, 0, 1);
+  return p.bulk + (p.model_params[kGeoKs] - p.bulk) * material_math::clamp(x / tl, 0, 1);
 }
 
 /// \brief Crush pressure [Pa] at plastic volumetric strain 0 <= x < theta_L.
@@ -70,24 +70,24 @@ KOKKOS_INLINE_FUNCTION Real geoStrength(const MaterialParams &p, Real P, Real D,
   const Real *m = p.model_params;
   const Real y0 = m[kGeoY0], ym = m[kGeoYmax];
   const Real yi = P >= 0 ? y0 + m[kGeoMuI] * P / (1 + m[kGeoMuI] * P / (ym - y0))
-                         : y0 * MaterialMath::max(0, 1 + P / m[kGeoT0]);
-  const Real yd = MaterialMath::min(m[kGeoMuD] * MaterialMath::max(P, 0), ym);
+                         : y0 * material_math::max(0, 1 + P / m[kGeoT0]);
+  const Real yd = material_math::min(m[kGeoMuD] * material_math::max(P, 0), ym);
   const Real tl = m[kGeoThetaLock];
-  const Real h = tl > 0 ? 1 + m[kGeoHc] * MaterialMath::clamp(theta_p / tl, 0, 1) : Real(1);
+  const Real h = tl > 0 ? 1 + m[kGeoHc] * material_math::clamp(theta_p / tl, 0, 1) : Real(1);
   return h * ((1 - D) * yi + D * yd);
 }
 
 /// \brief Damage from the accumulated dilatant strain.
 KOKKOS_INLINE_FUNCTION Real geoDamage(const MaterialParams &p, Real theta_d)
 {
-  return MaterialMath::clamp(theta_d / p.model_params[kGeoEpsD], 0, 1);
+  return material_math::clamp(theta_d / p.model_params[kGeoEpsD], 0, 1);
 }
 
 /// \brief Dilatancy ratio beta(P): plastic volume increase per unit eq. plastic shear strain.
 KOKKOS_INLINE_FUNCTION Real geoDilatancy(const MaterialParams &p, Real P)
 {
   const Real *m = p.model_params;
-  return m[kGeoBeta] * MaterialMath::max(0, 1 - P / m[kGeoPbd]);
+  return m[kGeoBeta] * material_math::max(0, 1 - P / m[kGeoPbd]);
 }
 
 /// \brief Volumetric state of one element during its update.
@@ -106,7 +106,7 @@ struct GeoCrushResidual
   Real theta, theta_c;
   KOKKOS_INLINE_FUNCTION Real operator()(Real x) const
   {
-    return geoBulk(*p, MaterialMath::max(theta_c, x)) * (theta - x) - geoCrushPressure(*p, x);
+    return geoBulk(*p, material_math::max(theta_c, x)) * (theta - x) - geoCrushPressure(*p, x);
   }
 };
 
@@ -119,7 +119,7 @@ KOKKOS_INLINE_FUNCTION void geoCrush(const MaterialParams &p, GeoState &g)
     return;
   if (g.theta_p < 0)
   {
-    g.theta_p = MaterialMath::min(g.theta, 0);
+    g.theta_p = material_math::min(g.theta, 0);
     g.P = geoBulk(p, g.theta_c) * (g.theta - g.theta_p);
   }
   const Real tl = p.model_params[kGeoThetaLock];
@@ -132,7 +132,7 @@ KOKKOS_INLINE_FUNCTION void geoCrush(const MaterialParams &p, GeoState &g)
   else
     g.theta_p = bracketedRoot(f, g.theta_p, f(g.theta_p), tl, f_lock, 1e-15,
                               1e-13 * p.model_params[kGeoPlock]);
-  g.theta_c = MaterialMath::max(g.theta_c, g.theta_p);
+  g.theta_c = material_math::max(g.theta_c, g.theta_p);
   g.P = geoBulk(p, g.theta_c) * (g.theta - g.theta_p);
 }
 
@@ -239,7 +239,7 @@ KOKKOS_INLINE_FUNCTION Real geomaterialUpdate(const MaterialParams &p, const Mat
     stress[k] = s[k];
   for (int k = 0; k < 3; ++k)
     stress[k] -= g.P;
-  return kmath::sqrt((geoBulk(p, g.theta_c) + 4.0 / 3.0 * p.shear) / st.rho_new);
+  return kmath::sqrt(pWaveModulus(geoBulk(p, g.theta_c), p.shear) / st.rho_new);
 }
 
 } // namespace scpdyn

@@ -165,10 +165,10 @@ KOKKOS_INLINE_FUNCTION Real burnFraction(const MaterialParams &p, Real t, Real t
                                          Real F_old)
 {
   const Real *m = p.model_params;
-  Real F = MaterialMath::clamp((t - t_l) * m[kHeD] / (m[kHeBurnWidth] * L), 0, 1);
+  Real F = material_math::clamp((t - t_l) * m[kHeD] / (m[kHeBurnWidth] * L), 0, 1);
   if (m[kHeBetaBurn] > 0)
-    F = MaterialMath::max(F, MaterialMath::clamp((1 - V) / (1 - m[kHeVcj]), 0, 1));
-  return MaterialMath::max(F, F_old);
+    F = material_math::max(F, material_math::clamp((1 - V) / (1 - m[kHeVcj]), 0, 1));
+  return material_math::max(F, F_old);
 }
 
 /// \brief High-explosive step: burn fraction, then p_new and e_new solved together (p is
@@ -203,7 +203,7 @@ KOKKOS_INLINE_FUNCTION Real highExplosiveUpdate(const MaterialParams &p, const M
     stress[k + 3] = 0;
   }
   const Real c2 = -dAj * V / st.rho_new + w * e + w * p_full / st.rho_new;
-  const Real c2_floor = 1e-6 * p.bulk / p.density;
+  const Real c2_floor = soundSpeedSquaredFloor(p); // the products carry no shear: 1e-6 K / rho0
   return kmath::sqrt(c2 > c2_floor ? c2 : c2_floor);
 }
 

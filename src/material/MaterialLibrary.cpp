@@ -426,7 +426,7 @@ MaterialParams makeMaterialParams(const MaterialSpec &spec)
 
 Real referenceSoundSpeed(const MaterialParams &p)
 {
-  return std::sqrt((p.bulk + 4.0 / 3.0 * p.shear) / p.density);
+  return std::sqrt(pWaveModulus(p.bulk, p.shear) / p.density);
 }
 
 std::vector<std::string> historyNames(const MaterialParams &p)

@@ -1,19 +1,16 @@
 #pragma once
 /// \file MaterialLibrary.hpp
-/// \brief Deck-side view of the material models: which keys each model takes, their checks,
-/// and the conversion from MaterialSpec (deck) to MaterialParams (kernels).
-#include "input/Deck.hpp"
+/// \brief Deck-side view of the material models: which keys each model takes, their checks
+/// (validateMaterialSpec, MaterialSpec.hpp), and the conversion from MaterialSpec (deck) to
+/// MaterialParams (kernels).
 #include "material/MaterialParams.hpp"
+#include "material/MaterialSpec.hpp"
 
 #include <string>
 #include <vector>
 
 namespace scpdyn
 {
-
-/// \brief Check a material's model, eos and keys (unknown, missing, non-physical values);
-/// throws InputError naming `materials[i].<key>` and the YAML line.
-void validateMaterialSpec(const MaterialSpec &spec);
 
 /// \brief Validated conversion to the kernel parameters (calls validateMaterialSpec).
 MaterialParams makeMaterialParams(const MaterialSpec &spec);

@@ -2,19 +2,20 @@
 /// \file MaterialMath.hpp
 /// \brief Scalar helpers of the material models: min/max/clamp and a bracketed root finder
 /// for the plastic-multiplier equations (device-callable, no allocation).
+#include "core/ScalarOps.hpp"
 #include "core/Types.hpp"
 
 namespace scpdyn
 {
 
-/// \brief Branch helpers of the material room (elementary functions: kmath in core/Types.hpp).
-namespace MaterialMath
+/// \brief The branch helpers of core/ScalarOps.hpp under the name the material models use.
+namespace material_math
 {
-KOKKOS_INLINE_FUNCTION Real abs(Real x) { return x < 0 ? -x : x; }
-KOKKOS_INLINE_FUNCTION Real min(Real x, Real y) { return x < y ? x : y; }
-KOKKOS_INLINE_FUNCTION Real max(Real x, Real y) { return x > y ? x : y; }
-KOKKOS_INLINE_FUNCTION Real clamp(Real x, Real lo, Real hi) { return x < lo ? lo : x > hi ? hi : x; }
-} // namespace MaterialMath
+using scalar_ops::abs;
+using scalar_ops::clamp;
+using scalar_ops::max;
+using scalar_ops::min;
+} // namespace material_math
 
 /// \brief Root of f on [lo, hi] where f(lo) and f(hi) have opposite signs (or one is zero).
 ///
@@ -39,7 +40,7 @@ KOKKOS_INLINE_FUNCTION Real bracketedRoot(const F &f, Real lo, Real flo, Real hi
     if (!(x > lo && x < hi)) // round-off at a converged bracket
       x = 0.5 * (lo + hi);
     const Real fx = f(x);
-    if (MaterialMath::abs(fx) <= ftol)
+    if (material_math::abs(fx) <= ftol)
       return x;
     if ((fx > 0) == (fhi > 0))
     {

@@ -40,6 +40,18 @@ struct MaterialParams
   Real model_params[kModelParams] = {}; ///< layout owned by each later model's header
 };
 
+/// \brief P-wave (uniaxial-strain) modulus K + 4G/3 [Pa]: rho c^2 of the elastic sound speed.
+/// Every sound speed and time-step estimate of a model's elastic part takes it from here
+/// (c^2 = pWaveModulus / rho).
+KOKKOS_INLINE_FUNCTION Real pWaveModulus(Real bulk, Real shear) { return bulk + 4.0 / 3.0 * shear; }
+
+/// \brief Floor of c^2 (1e-6 of the reference P-modulus over rho0) [m^2/s^2]: a tensile state
+/// of the nonlinear EOS must not give c = 0 (the time step is h / c).
+KOKKOS_INLINE_FUNCTION Real soundSpeedSquaredFloor(const MaterialParams &p)
+{
+  return 1e-6 * pWaveModulus(p.bulk, p.shear) / p.density;
+}
+
 /// \brief Everything a material needs about one element for one step.
 struct MaterialStep
 {

@@ -61,7 +61,7 @@ KOKKOS_INLINE_FUNCTION R linearEos(const MaterialParams &p, const R &p_old, cons
 {
   p_new = p_old - p.bulk * dt * trD;
   e = e_star - Real(0.5) * h * p_new * trD;
-  return (p.bulk + Real(4.0 / 3.0) * p.shear) / rho_new;
+  return pWaveModulus(p.bulk, p.shear) / rho_new;
 }
 
 /// \brief stress = s - p_new I [Pa].
@@ -73,13 +73,6 @@ KOKKOS_INLINE_FUNCTION void metalStress(const R s[6], const R &p_new, R stress[6
   stress[0] -= p_new;
   stress[1] -= p_new;
   stress[2] -= p_new;
-}
-
-/// \brief Floor of c^2 (1e-6 of the reference P-modulus over rho0) [m^2/s^2]: a tensile state
-/// of the nonlinear EOS must not give c = 0 (the time step is h / c).
-KOKKOS_INLINE_FUNCTION Real soundSpeedSquaredFloor(const MaterialParams &p)
-{
-  return 1e-6 * (p.bulk + 4.0 / 3.0 * p.shear) / p.density;
 }
 
 /// \brief The whole update of the `elastic` model with the linear EOS (what updateMaterial()

@@ -11,7 +11,6 @@ namespace scpdyn
 namespace
 {
 
-
 bool finalised()
 {
   int f = 0;
@@ -156,88 +155,83 @@ void NodeHalo::finish(Channel &c, const Real *field)
   c.field = nullptr;
 }
 
-void NodeHalo::beginSum(const VectorView &f)
+namespace
 {
-  start(_vec, f.data());
+/// Component i of node n of a nodal field with NC components (a RealView when NC = 1).
+template <int NC, class Field>
+KOKKOS_INLINE_FUNCTION Real &component(const Field &f, Index n, int i)
+{
+  if constexpr (NC == 1)
+    return f(n);
+  else
+    return f(n, i);
+}
+} // namespace
+
+template <int NC, class Field>
+void NodeHalo::packAndSend(Channel &c, const Field &f, const char *label)
+{
+  start(c, f.data());
   const auto slot_node = _slot_node;
-  const auto buf = _vec.send;
+  const auto buf = c.send;
   Kokkos::parallel_for(
-      "scpdyn::comm::nodeHalo::packVector", Kokkos::RangePolicy<ExecSpace>(0, _num_slots),
-      KOKKOS_LAMBDA(const Index k) {
+      label, Kokkos::RangePolicy<ExecSpace>(0, _num_slots), KOKKOS_LAMBDA(const Index k) {
         const Index n = slot_node(k);
-        for (int i = 0; i < 3; ++i)
-          buf(3 * k + i) = f(n, i);
+        for (int i = 0; i < NC; ++i)
+          buf(NC * k + i) = component<NC>(f, n, i);
       });
   ExecSpace().fence();
-  if (_vec.send_host.data() != _vec.send.data())
-    Kokkos::deep_copy(_vec.send_host, _vec.send);
+  if (c.send_host.data() != c.send.data())
+    Kokkos::deep_copy(c.send_host, c.send);
   const int nn = int(_neighbours.size());
   if (nn > 0)
-    MPI_Startall(nn, _vec.requests.data() + nn);
-  _bytes_sent += bytesPerVectorSum();
+    MPI_Startall(nn, c.requests.data() + nn);
+  _bytes_sent += NC * sizeof(Real) * std::size_t(_num_slots);
+}
+
+template <int NC, class Field>
+void NodeHalo::receiveAndSum(Channel &c, const Field &f, const char *label)
+{
+  finish(c, f.data());
+  const auto shared_node = _shared_node;
+  const auto offset = _sum_offset;
+  const auto source = _sum_source;
+  const auto buf = c.recv;
+  // total = ((0 + p_r0) + p_r1) + ... over the holders r0 < r1 < ...: the same additions in the
+  // same order on every rank, hence the same bits (additions only, nothing to contract).
+  Kokkos::parallel_for(
+      label, Kokkos::RangePolicy<ExecSpace>(0, _num_shared), KOKKOS_LAMBDA(const Index s) {
+        const Index n = shared_node(s);
+        Real t[NC] = {};
+        for (Index k = offset(s); k < offset(s + 1); ++k)
+        {
+          const Index src = source(k);
+          for (int i = 0; i < NC; ++i)
+            t[i] += src < 0 ? component<NC>(f, n, i) : buf(NC * src + i);
+        }
+        for (int i = 0; i < NC; ++i)
+          component<NC>(f, n, i) = t[i];
+      });
+}
+
+void NodeHalo::beginSum(const VectorView &f)
+{
+  packAndSend<3>(_vec, f, "scpdyn::comm::nodeHalo::packVector");
 }
 
 void NodeHalo::endSum(const VectorView &f)
 {
-  finish(_vec, f.data());
-  const auto shared_node = _shared_node;
-  const auto offset = _sum_offset;
-  const auto source = _sum_source;
-  const auto buf = _vec.recv;
-  // total = ((0 + p_r0) + p_r1) + ... over the holders r0 < r1 < ...: the same additions in the
-  // same order on every rank, hence the same bits (additions only, nothing to contract).
-  Kokkos::parallel_for(
-      "scpdyn::comm::nodeHalo::sumVector", Kokkos::RangePolicy<ExecSpace>(0, _num_shared),
-      KOKKOS_LAMBDA(const Index s) {
-        const Index n = shared_node(s);
-        Real t[3] = {0, 0, 0};
-        for (Index k = offset(s); k < offset(s + 1); ++k)
-        {
-          const Index src = source(k);
-          for (int i = 0; i < 3; ++i)
-            t[i] += src < 0 ? f(n, i) : buf(3 * src + i);
-        }
-        for (int i = 0; i < 3; ++i)
-          f(n, i) = t[i];
-      });
+  receiveAndSum<3>(_vec, f, "scpdyn::comm::nodeHalo::sumVector");
 }
 
 void NodeHalo::beginSum(const RealView &m)
 {
-  start(_scal, m.data());
-  const auto slot_node = _slot_node;
-  const auto buf = _scal.send;
-  Kokkos::parallel_for(
-      "scpdyn::comm::nodeHalo::packScalar", Kokkos::RangePolicy<ExecSpace>(0, _num_slots),
-      KOKKOS_LAMBDA(const Index k) { buf(k) = m(slot_node(k)); });
-  ExecSpace().fence();
-  if (_scal.send_host.data() != _scal.send.data())
-    Kokkos::deep_copy(_scal.send_host, _scal.send);
-  const int nn = int(_neighbours.size());
-  if (nn > 0)
-    MPI_Startall(nn, _scal.requests.data() + nn);
-  _bytes_sent += bytesPerScalarSum();
+  packAndSend<1>(_scal, m, "scpdyn::comm::nodeHalo::packScalar");
 }
 
 void NodeHalo::endSum(const RealView &m)
 {
-  finish(_scal, m.data());
-  const auto shared_node = _shared_node;
-  const auto offset = _sum_offset;
-  const auto source = _sum_source;
-  const auto buf = _scal.recv;
-  Kokkos::parallel_for(
-      "scpdyn::comm::nodeHalo::sumScalar", Kokkos::RangePolicy<ExecSpace>(0, _num_shared),
-      KOKKOS_LAMBDA(const Index s) {
-        const Index n = shared_node(s);
-        Real t = 0;
-        for (Index k = offset(s); k < offset(s + 1); ++k)
-        {
-          const Index src = source(k);
-          t += src < 0 ? m(n) : buf(src);
-        }
-        m(n) = t;
-      });
+  receiveAndSum<1>(_scal, m, "scpdyn::comm::nodeHalo::sumScalar");
 }
 
 } // namespace scpdyn

@@ -93,6 +93,11 @@ private:
   void setupChannel(Channel &c, int ncomp, int tag, const char *label);
   void start(Channel &c, const Real *field);
   void finish(Channel &c, const Real *field);
+  /// The vector and scalar sums are one code: `f` is a VectorView (NC = 3) or a RealView (1).
+  template <int NC, class Field>
+  void packAndSend(Channel &c, const Field &f, const char *label);
+  template <int NC, class Field>
+  void receiveAndSum(Channel &c, const Field &f, const char *label);
 
   MPI_Comm _comm = MPI_COMM_NULL;
   int _rank = 0;

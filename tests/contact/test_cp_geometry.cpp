@@ -77,7 +77,7 @@ void refMoments(const std::vector<P2> &P, const std::vector<P2> &Q, Real &A, Rea
   Real buf[64][2];
   for (size_t k = 0; k < h.size(); ++k)
     buf[k][0] = h[k][0], buf[k][1] = h[k][1];
-  CpGeom::polygonMoments(buf, int(h.size()), A, Mx, My);
+  cp_geometry::polygonMoments(buf, int(h.size()), A, Mx, My);
 }
 std::vector<P2> randomConvex(std::mt19937_64 &rng, int maxv)
 {
@@ -188,13 +188,13 @@ TEST(CpGeometry, RandomConvexOverlap)
     Real a[16][2], b[16][2], out[kMaxPolyVerts][2];
     toArray(P, a), toArray(Q, b);
     Real A1, M1x, M1y, A2, M2x, M2y, Ar, Mrx, Mry;
-    int n = CpGeom::clipConvex(a, int(P.size()), b, int(Q.size()), out);
-    CpGeom::polygonMoments(out, n, A1, M1x, M1y);
-    n = CpGeom::clipConvex(b, int(Q.size()), a, int(P.size()), out);
-    CpGeom::polygonMoments(out, n, A2, M2x, M2y);
+    int n = cp_geometry::clipConvex(a, int(P.size()), b, int(Q.size()), out);
+    cp_geometry::polygonMoments(out, n, A1, M1x, M1y);
+    n = cp_geometry::clipConvex(b, int(Q.size()), a, int(P.size()), out);
+    cp_geometry::polygonMoments(out, n, A2, M2x, M2y);
     refMoments(P, Q, Ar, Mrx, Mry);
-    const Real Ap = CpGeom::polygonSignedArea(a, int(P.size()));
-    const Real Aq = CpGeom::polygonSignedArea(b, int(Q.size()));
+    const Real Ap = cp_geometry::polygonSignedArea(a, int(P.size()));
+    const Real Aq = cp_geometry::polygonSignedArea(b, int(Q.size()));
     ASSERT_GT(Ap, 0);
     worst = std::max({worst, std::fabs(A1 - Ar), std::fabs(M1x - Mrx), std::fabs(M1y - Mry)});
     worst_sym = std::max(worst_sym, std::fabs(A1 - A2));
@@ -218,7 +218,7 @@ TEST(CpGeometry, NonConvexSignedFan)
   const std::vector<P2> t1 = {{0, 0}, {4, 1}, {3.5, 1}}, t2 = {{3.5, 1}, {4, 1}, {0, 2}};
   Real d[4][2];
   toArray(dart, d);
-  ASSERT_FALSE(CpGeom::isConvexCCW(d, 4));
+  ASSERT_FALSE(cp_geometry::isConvexCCW(d, 4));
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<Real> u(-0.5, 4.0);
   Real worst = 0;
@@ -229,7 +229,7 @@ TEST(CpGeometry, NonConvexSignedFan)
     Real q[4][2];
     toArray(sq, q);
     Real A, Mx, My, Ar1, Mx1, My1, Ar2, Mx2, My2;
-    CpGeom::overlapMoments(d, 4, q, 4, A, Mx, My);
+    cp_geometry::overlapMoments(d, 4, q, 4, A, Mx, My);
     refMoments(t1, sq, Ar1, Mx1, My1);
     refMoments(t2, sq, Ar2, Mx2, My2);
     worst = std::max(

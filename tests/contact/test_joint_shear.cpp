@@ -40,8 +40,8 @@ void rotate(const Real axis[3], Real th, const Real x[3], Real y[3])
   for (int d = 0; d < 3; ++d)
     k[d] = axis[d] / l;
   Real kv[3];
-  ContactMath::cross(k, v, kv);
-  const Real kd = ContactMath::dot(k, v), c = std::cos(th), s = std::sin(th);
+  contact_math::cross(k, v, kv);
+  const Real kd = contact_math::dot(k, v), c = std::cos(th), s = std::sin(th);
   for (int d = 0; d < 3; ++d)
     y[d] = c * v[d] + s * kv[d] + (1 - c) * kd * k[d];
 }
@@ -220,7 +220,7 @@ TEST(JointShear, RotationWorkedExample)
   EXPECT_NEAR(Fs[1], 50 * std::cos(10 * kDeg), 1e-12);
   EXPECT_NEAR(Fs[2], 50 * std::sin(10 * kDeg), 1e-12);
   EXPECT_NEAR(mag(Fs), std::sqrt(12500.0), 1e-12);
-  EXPECT_NEAR(ContactMath::dot(Fs, n), 0, 1e-13);
+  EXPECT_NEAR(contact_math::dot(Fs, n), 0, 1e-13);
 }
 
 // T11f at the law level with the real geometry: load a CP to sigma_n = 10 MPa (closure a/6,
@@ -277,7 +277,7 @@ TEST(JointShear, RigidRotationObjectivity)
       err = std::max(err, std::fabs(s.Fs[d] - expect[d]) / mag(Fs0));
     EXPECT_LT(err, 1e-12) << c;
     EXPECT_LT(rel(s.Fn, 1e7), 1e-12);
-    EXPECT_LT(std::fabs(ContactMath::dot(s.Fs, g.n)), 1e-12 * mag(Fs0));
+    EXPECT_LT(std::fabs(contact_math::dot(s.Fs, g.n)), 1e-12 * mag(Fs0));
     std::printf("[ measured ] T11f case %d: |Fs - R Fs0|/|Fs0| = %.2e after 90 deg in 200 steps\n",
                 c, err);
   }
@@ -323,7 +323,7 @@ TEST(JointShear, StickySlideLineSleepy)
   Real dV[3];
   for (int d = 0; d < 3; ++d)
     dV[d] = V1[d] - V2[d], k.n[d] = n[d];
-  k.Vn = ContactMath::dot(dV, n);
+  k.Vn = contact_math::dot(dV, n);
   for (int d = 0; d < 3; ++d)
     k.Vs[d] = dV[d] - k.Vn * n[d];
   internalForceTerm(a1, a2, mstar, n, k.Fint_n, k.Fint_s);

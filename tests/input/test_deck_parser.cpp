@@ -216,12 +216,12 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(d.courant, 0.8);
   EXPECT_EQ(d.dt_max, 1.0e-6);
   EXPECT_EQ(d.max_cycles, 5000);
-  EXPECT_EQ(d.hourglass_type, "stiffness");
+  EXPECT_EQ(d.hourglass_type, HourglassForm::Stiffness);
   EXPECT_EQ(d.hourglass_coefficient, 0.1);
   EXPECT_EQ(d.bulk_viscosity_linear, 0.1);
   EXPECT_EQ(d.bulk_viscosity_quadratic, 1.2);
-  EXPECT_EQ(d.scatter, "gather");
-  EXPECT_EQ(d.node_update, "separate");
+  EXPECT_EQ(d.scatter, ScatterMode::Gather);
+  EXPECT_EQ(d.node_update, NodeUpdateMode::Separate);
   EXPECT_EQ(d.gravity, (std::array<Real, 3>{{0, 0, -9.81}}));
   EXPECT_EQ(d.output_dir, "results/full");
   EXPECT_EQ(d.field_interval, 1.0e-4);
@@ -248,14 +248,14 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(granite.lines.at("eos.gamma0"), 24);
 
   ASSERT_EQ(d.parts.size(), 3u);
-  EXPECT_EQ(d.parts[0].mesh.element, "hex8");
+  EXPECT_EQ(d.parts[0].mesh.element, ElementType::Hex8);
   EXPECT_EQ(d.parts[0].mesh.elements, (std::array<int, 3>{{10, 10, 2}}));
   EXPECT_EQ(d.parts[0].mesh.origin, (std::array<Real, 3>{{0, 0, -0.02}}));
   EXPECT_EQ(d.parts[0].mesh.size, (std::array<Real, 3>{{1, 1, 0.02}}));
   EXPECT_FALSE(d.parts[0].merge_nodes);
   const MeshSpec &wall = d.parts[1].mesh;
-  EXPECT_EQ(wall.type, "brick_wall");
-  EXPECT_EQ(wall.element, "tet4");
+  EXPECT_EQ(wall.type, MeshType::BrickWall);
+  EXPECT_EQ(wall.element, ElementType::Tet4);
   EXPECT_EQ(wall.brick_size, (std::array<Real, 3>{{0.2, 0.1, 0.1}}));
   EXPECT_EQ(wall.count, (std::array<int, 3>{{4, 1, 3}}));
   EXPECT_EQ(wall.stagger, 0.25);
@@ -281,14 +281,14 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(d.boundary_conditions[3].component, 0);
 
   ASSERT_EQ(d.gauges.size(), 4u);
-  EXPECT_EQ(d.gauges[0].kind, "node");
+  EXPECT_EQ(d.gauges[0].kind, GaugeKind::Node);
   EXPECT_EQ(d.gauges[0].id, 12);
-  EXPECT_EQ(d.gauges[1].kind, "element");
+  EXPECT_EQ(d.gauges[1].kind, GaugeKind::Element);
   EXPECT_EQ(d.gauges[1].quantities, (std::vector<std::string>{"sxx", "pressure"}));
   EXPECT_TRUE(d.gauges[2].has_point);
-  EXPECT_EQ(d.gauges[2].kind, "element");
+  EXPECT_EQ(d.gauges[2].kind, GaugeKind::Element);
   EXPECT_EQ(d.gauges[2].id, -1);
-  EXPECT_EQ(d.gauges[3].kind, "node");
+  EXPECT_EQ(d.gauges[3].kind, GaugeKind::Node);
 }
 
 TEST(DeckParser, MinimalDeckGetsDocumentedDefaults)
@@ -300,12 +300,12 @@ TEST(DeckParser, MinimalDeckGetsDocumentedDefaults)
   EXPECT_EQ(d.courant, 0.5);
   EXPECT_EQ(d.dt_max, 1e30);
   EXPECT_EQ(d.max_cycles, -1);
-  EXPECT_EQ(d.hourglass_type, "viscous");
+  EXPECT_EQ(d.hourglass_type, HourglassForm::Viscous);
   EXPECT_EQ(d.hourglass_coefficient, 0.05);
   EXPECT_EQ(d.bulk_viscosity_linear, 0.06);
   EXPECT_EQ(d.bulk_viscosity_quadratic, 1.5);
-  EXPECT_EQ(d.scatter, "gather");
-  EXPECT_EQ(d.node_update, "fused");
+  EXPECT_EQ(d.scatter, ScatterMode::Gather);
+  EXPECT_EQ(d.node_update, NodeUpdateMode::Fused);
   EXPECT_EQ(d.gravity, (std::array<Real, 3>{{0, 0, 0}}));
   EXPECT_EQ(d.output_dir, "out/impact_2d");
   EXPECT_EQ(d.field_interval, 0.0);
@@ -314,8 +314,8 @@ TEST(DeckParser, MinimalDeckGetsDocumentedDefaults)
   EXPECT_EQ(d.materials[0].model, "elastic");
   EXPECT_EQ(d.materials[0].eos, "linear");
   const MeshSpec &m = d.parts[0].mesh;
-  EXPECT_EQ(m.type, "block");
-  EXPECT_EQ(m.element, "quad4");
+  EXPECT_EQ(m.type, MeshType::Block);
+  EXPECT_EQ(m.element, ElementType::Quad4);
   EXPECT_EQ(m.elements, (std::array<int, 3>{{4, 2, 1}}));
   EXPECT_EQ(m.size, (std::array<Real, 3>{{1, 0.5, 0}}));
   EXPECT_EQ(m.origin, (std::array<Real, 3>{{0, 0, 0}}));
@@ -403,7 +403,7 @@ TEST(DeckParser, DocumentationExampleParses)
       parseDeckString(doc.substr(begin + 8, end - begin - 8), kWork + "/docs_example.yaml");
   EXPECT_EQ(d.title, "block_on_wall");
   ASSERT_EQ(d.parts.size(), 2u);
-  EXPECT_EQ(d.parts[0].mesh.type, "brick_wall");
+  EXPECT_EQ(d.parts[0].mesh.type, MeshType::BrickWall);
   EXPECT_EQ(d.materials[1].eos, "mie_gruneisen");
   EXPECT_EQ(d.boundary_conditions.size(), 3u);
   EXPECT_EQ(d.gauges.size(), 4u);

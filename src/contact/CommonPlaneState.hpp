@@ -1,7 +1,8 @@
 #pragma once
-/// \file ContactParams.hpp
+/// \file CommonPlaneState.hpp
 /// \brief Joint (common-plane contact) parameters and per-CP history, both POD so they can live
 /// in Views and be copied into kernels. Equation numbers refer to shared/docs/scp-method.md.
+#include "core/ScalarOps.hpp"
 #include "core/Types.hpp"
 
 namespace scpdyn
@@ -9,11 +10,11 @@ namespace scpdyn
 
 /// \brief Small vector helpers usable on host and device (square roots and trigonometry come
 /// from the project-wide `kmath` alias of core/Types.hpp).
-namespace ContactMath
+namespace contact_math
 {
-KOKKOS_INLINE_FUNCTION Real abs(Real x) { return x < 0 ? -x : x; }
-KOKKOS_INLINE_FUNCTION Real min(Real x, Real y) { return x < y ? x : y; }
-KOKKOS_INLINE_FUNCTION Real max(Real x, Real y) { return x > y ? x : y; }
+using scalar_ops::abs;
+using scalar_ops::max;
+using scalar_ops::min;
 KOKKOS_INLINE_FUNCTION Real dot(const Real x[3], const Real y[3])
 {
   return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
@@ -25,7 +26,7 @@ KOKKOS_INLINE_FUNCTION void cross(const Real x[3], const Real y[3], Real r[3])
   r[2] = x[0] * y[1] - x[1] * y[0];
 }
 KOKKOS_INLINE_FUNCTION Real norm(const Real x[3]) { return kmath::sqrt(dot(x, x)); }
-} // namespace ContactMath
+} // namespace contact_math
 
 /// \brief Contact option of a CP (scp-method.md section 11).
 enum class ContactOption : int

@@ -10,7 +10,7 @@
 
 namespace
 {
-using namespace scpdyn::Impl;
+using namespace scpdyn::input_impl;
 
 TEST(YamlReader, EditDistance)
 {

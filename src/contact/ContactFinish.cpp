@@ -10,7 +10,7 @@
 
 namespace scpdyn
 {
-using namespace ContactKernels;
+using namespace contact_kernels;
 
 namespace
 {
