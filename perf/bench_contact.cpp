@@ -1,4 +1,4 @@
-// Google Benchmark of the common-plane contact (scp-method.md 3, Appendix A) through the
+// Google Benchmark of the common-plane contact (docs/theory.md 3, Appendix A) through the
 // library's public contact functions:
 //  * detection (computeFaceGeometry + sortFacesIntoBins + findCandidatePairs, the work of a
 //    search cycle) on a fully jointed grid of 1e3 to 1e6 faces, 2D (quad cells) and 3D (hex

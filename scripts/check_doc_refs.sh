@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every citation of docs/theory.md in the code and the docs must name a section or an equation
 # that docs/theory.md has, and the code must cite nothing outside this repository for the
-# method. Checked in the comments of src/, tests/, perf/, scripts/ and the CMakeLists.txt files,
+# method. Checked in the comments of src/, tests/, perf/, scripts/, inputs/ and CMakeLists.txt,
 # and in the text of docs/*.md and README.md:
 #   - "docs/theory.md 6.7, 3.4", "theory.md sections 5-12", "docs/theory.md Appendix A":
 #     each number must be a heading "## 6.7 ..." ("## 6 ..." for a whole section) of
@@ -49,7 +49,7 @@ for e in sorted(equations):
     if f"({e})" not in body:
         print(f"{theory_path}: equation ({e}) is in the map but not in the text")
 
-CODE_DIRS = ["src", "tests", "perf", "scripts"]
+CODE_DIRS = ["src", "tests", "perf", "scripts", "inputs"]
 CODE_EXT = (".cpp", ".hpp", ".h", ".py", ".sh", ".yaml", ".yml", ".cmake")
 SKIP = {os.path.join("scripts", "check_doc_refs.sh")}
 

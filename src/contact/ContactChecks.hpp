@@ -1,7 +1,7 @@
 #pragma once
 /// \file ContactChecks.hpp
 /// \brief The divergence test of step 9 (what stops a run) and the closure limits shared with
-/// the candidate rules of detection (scp-method.md 3.2, 3.4, 6.2). Device-callable.
+/// the candidate rules of detection (docs/theory.md 3.2, 3.4, 6.2). Device-callable.
 #include "contact/ContactParams.hpp"
 
 namespace scpdyn

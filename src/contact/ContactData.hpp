@@ -1,7 +1,7 @@
 #pragma once
 /// \file ContactData.hpp
 /// \brief Device data of the common-plane contact: the contact faces (fixed for the run) and the
-/// common planes (CPs), each a struct of Views indexed by face or CP id (scp-method.md 3, 12).
+/// common planes (CPs), each a struct of Views indexed by face or CP id (docs/theory.md 3, 12).
 #include "contact/ContactParams.hpp"
 
 #include <string>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file ContactSystem.hpp
-/// \brief The runtime of the Simple Common Plane contact (scp-method.md 2-12, Appendix A): owns
+/// \brief The runtime of the Simple Common Plane contact (docs/theory.md 2-12, Appendix A): owns
 /// the contact faces and the live common planes, runs detection (steps 3 and 9 on search
 /// cycles), the per-cycle CP forces (step 9), the explicit-contact time-step limit (19) and the
 /// contact energy. Used by the Solver; everything heavy runs in Kokkos kernels.
