@@ -417,12 +417,11 @@ GaugeHistory runJointedWave(double a_mm, double gap, const std::string &name)
 // 1. the table of docs/theory.md 14.1, from scp-ref/bar1d.py as published: solid 14.78 us /
 //    495 m/s; a = 1e-5: 15.89 us / 496.0 m/s; a = 1e-4: 33.44 us / 159.7 m/s. Its host model
 //    differs from ours: linear sigma = M (L/L0 - 1) against our hypoelastic midpoint update
-//    (sigma = M ln(L/L0)):
-//    5.6 % stiffer at the 11 % strain of the impact, so the front runs faster; q = 0.3 rho c0
-//    |dv| against 0.3 rho c_old |dv| L0/L; a fixed dt = S h/c0 against S min(L/c); no gap; and
-//    the new CP at u = 0 (ours too). bar1d.py with each of our choices switched on in turn (the
-//    mirror script, helpers/contact1d-bar1d-mirror.py) moves the a = 1e-5 arrival by +0.22 (gap),
-//    -0.22 (law), -0.11 us (viscosity) and the a = 1e-4 peak by -1.4 % +0.2 % +0.4 %. Tolerance:
+//    (sigma = M ln(L/L0)): 5.6 % stiffer at the 11 % strain of the impact, so the front runs
+//    faster; q = 0.3 rho c0 |dv| against 0.3 rho c_old |dv| L0/L; a fixed dt = S h/c0 against
+//    S min(L/c); no gap; and the new CP at u = 0 (ours too). bar1d.py with each of our choices
+//    switched on in turn moves the a = 1e-5 arrival by +0.22 (gap), -0.22 (law), -0.11 us
+//    (viscosity) and the a = 1e-4 peak by -1.4 % +0.2 % +0.4 %. Tolerance:
 //    arrival 0.5 us (4.5 steps, 3 % of the a = 1e-5 arrival), peak 4 %.
 // 2. the same script with all of our choices (gap 0.2 mm, our law, viscosity, dt; u0half=False,
 //    the closure at x^n): a = 1e-5: 15.811218 us / 495.92629 m/s, 551 steps; a = 1e-4:

@@ -65,7 +65,7 @@ const std::string kRollers = "node_sets:\n  - {name: all, box: {min: [-1, -1], m
                              "component: y, value: 0}\n";
 
 /// Two 1 mm quads touching at t = 0, the left one at 1 km/s, rollers; implicit joint of aperture
-/// `a_mm`, E0 = 0.05 GPa (helper deck touching_at_start.yaml).
+/// `a_mm`, E0 = 0.05 GPa.
 std::string touchingDeck(const std::string &a_mm)
 {
   return "dimension: 2\ntime: {end: 1.0e-6, courant: 0.5}\n" + kLimestone +
@@ -81,8 +81,7 @@ std::string touchingDeck(const std::string &a_mm)
 }
 
 /// The paper's Fig. 2 as a plane-strain strip on rollers: 20 blocks of one 1 mm quad, the first
-/// 10 at 1 km/s and 0.06 mm short of the rest (helper decks strip_penetration_weights.yaml,
-/// explicit_closure_past_aperture.yaml). `joint`: the flow map of the surface after `part: "*"`.
+/// 10 at 1 km/s and 0.06 mm short of the rest. `joint`: the flow map of the surface after `part: "*"`.
 std::string stripDeck(const std::string &joint, double gap_mm, const std::string &end)
 {
   std::string d = "dimension: 2\ngeometry: plane_strain\ntime: {end: " + end +

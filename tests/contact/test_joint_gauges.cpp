@@ -1,4 +1,4 @@
-// Joint gauges (gauges of kind `joint`, docs/input.md): the per-joint histories of issue 3, on
+// Joint gauges (gauges of kind `joint`, docs/input.md): the per-joint histories, on
 // the paper's block impact (Fig. 5 / T5: 1 km/s, a = 0.2 mm, E0 = 0.5 GPa, quasi-implicit
 // joint at S = 0.5, non-matching 15 x 15 / 16 x 16 meshes).
 #include "ContactTestUtil.hpp"
