@@ -6,7 +6,7 @@
 //  * the per-cycle CP update (ContactSystem::computeForces on a non-search cycle: v*, sub-steps
 //    A-E for every CP, the constraint passes of sticky/slide-line, checks, scatter, energy) on a
 //    jointed brick wall built by the Solver from a deck: counter ns_per_cp_cycle.
-// See perf/README.md, section "Contact".
+// Results: perf/README.md ("Where the time goes"); every measurement: perf/results/log.md.
 #include "bench_common.hpp"
 
 #include "contact/ContactSearch.hpp"
