@@ -1,4 +1,4 @@
-// Google Benchmark of the common-plane contact (scp-method.md 3, Appendix A) through the
+// Google Benchmark of the common-plane contact (docs/theory.md 3, Appendix A) through the
 // library's public contact functions:
 //  * detection (computeFaceGeometry + sortFacesIntoBins + findCandidatePairs, the work of a
 //    search cycle) on a fully jointed grid of 1e3 to 1e6 faces, 2D (quad cells) and 3D (hex
@@ -6,7 +6,7 @@
 //  * the per-cycle CP update (ContactSystem::computeForces on a non-search cycle: v*, sub-steps
 //    A-E for every CP, the constraint passes of sticky/slide-line, checks, scatter, energy) on a
 //    jointed brick wall built by the Solver from a deck: counter ns_per_cp_cycle.
-// See perf/README.md, section "Contact".
+// Results: perf/README.md ("Where the time goes"); every measurement: perf/results/log.md.
 #include "bench_common.hpp"
 
 #include "contact/ContactSearch.hpp"

@@ -15,7 +15,9 @@ every round: the host's noise only ever slows a run down, so these show what the
 a quiet machine, where the medians show what this host gave. Plain python3, no packages.
 
 With CSV=FILE in the environment, every repetition is also appended to FILE (columns threads,
-round, binary, benchmark, ns_per_elem_cycle) for perf/plot_cycle.py.
+round, binary, benchmark, ns_per_elem_cycle) for perf/plot_cycle.py. COUNTER=NAME reads another
+counter than ns_per_elem_cycle, e.g. COUNTER=ns_per_cp_cycle (or cpu_ns_per_cp_cycle) for
+bench_contact: a time counter ("806.5ns") is taken in ns, a plain one ("1.3k") as printed.
 """
 import collections
 import os
@@ -35,9 +37,14 @@ def main():
         sys.exit(__doc__)
     rounds, threads, binaries = int(args[0]), args[1], args[2:]
     env = dict(os.environ, OMP_NUM_THREADS=threads, OMP_PROC_BIND="spread", OMP_PLACES="threads")
+    counter = os.environ.get("COUNTER", "ns_per_elem_cycle")
+    value = re.compile(r"^(BM_\S+?)/real_time\s.*(?<![\w])" + re.escape(counter)
+                       + r"=([0-9.]+)([kMGmunp]?)(s?)(?![\w])")
+    plain = {"": 1.0, "k": 1e3, "M": 1e6, "G": 1e9, "m": 1e-3, "u": 1e-6, "n": 1e-9, "p": 1e-12}
+    in_ns = {"": 1e9, "m": 1e6, "u": 1e3, "n": 1.0, "p": 1e-3}  # a time counter, printed in s
     csv = open(os.environ["CSV"], "a") if os.environ.get("CSV") else None
     if csv and csv.tell() == 0:
-        csv.write("threads,round,binary,benchmark,ns_per_elem_cycle\n")
+        csv.write(f"threads,round,binary,benchmark,{counter}\n")
     runs = collections.defaultdict(dict)  # (binary, benchmark) -> round -> median
     every = collections.defaultdict(list)  # (binary, benchmark) -> every repetition
     for r in range(rounds):
@@ -45,9 +52,9 @@ def main():
             out = subprocess.run([b] + extra, env=env, capture_output=True, text=True).stdout
             values = collections.defaultdict(list)
             for line in out.splitlines():
-                m = re.match(r"^(BM_\S+?)/real_time\s.*ns_per_elem_cycle=([0-9.]+)(n|u|p)s", line)
+                m = value.match(line)
                 if m:
-                    scale = {"n": 1.0, "u": 1e3, "p": 1e-3}[m.group(3)]
+                    scale = (in_ns if m.group(4) else plain)[m.group(3)]
                     values[m.group(1)].append(float(m.group(2)) * scale)
             cells = []
             for name, v in sorted(values.items()):

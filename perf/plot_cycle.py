@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The whole-cycle benchmark as a chart: every repetition of every build from the CSV that
 perf/interleave.py writes (CSV=FILE), one panel per thread count, row packs and the general
-path side by side, with the issue's goal (3x the DRAM floor) and the floor itself.
+path side by side, with the goal (95 and 50 ns: 3x the DRAM floor) and the floor itself.
 
 usage: /usr/bin/python3 perf/plot_cycle.py CSV OUT.png [BINARY=LABEL ...]
   BINARY=LABEL names a binary path of the CSV on the chart (default: its parent directory). A
@@ -19,7 +19,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-GOAL = {"1": 95.0, "2": 50.0}   # ns per element-cycle (issue 2)
+GOAL = {"1": 95.0, "2": 50.0}   # ns per element-cycle: 3x the DRAM floor
 FLOOR = {"1": 32.0, "2": 16.0}  # the reference element-cycle's DRAM time
 
 

@@ -1,5 +1,5 @@
 #!/bin/bash
-# MPI x OpenMP scaling of a whole run (issue 4): the brick wall of perf/scaling_wall.yaml,
+# MPI x OpenMP scaling of a whole run: the brick wall of perf/scaling_wall.yaml,
 #   strong: one wall of >= 200k elements at 1 x 1, 1 x 2 and 2 x 1 ranks x threads;
 #   weak:   half the wall on 1 x 1 against the whole wall on 2 x 1 (and on 1 x 2);
 # plus the decomposition's traffic at 2, 3 and 4 ranks (oversubscribed: bytes, not times).

@@ -9,8 +9,8 @@
 int main(int argc, char **argv)
 {
   // ctest runs the tests with OMP_PROC_BIND=false but lists them (gtest_discover_tests) without
-  // it; Kokkos' warning about the unset variable on stdout was then read as three extra "tests"
-  // that ran nothing. (OpenMP has read its environment already: this changes no binding.)
+  // it; Kokkos' warning about the unset variable on stdout would be read as three extra
+  // "tests" that run nothing. (OpenMP has read its environment already: this changes no binding.)
   setenv("OMP_PROC_BIND", "false", 0);
   // every Solver of the suite checks that no room writes an early node of the fused step 12
   // without declaring it (integrate/LateNodes.hpp), the scpdyn binaries the tests start too

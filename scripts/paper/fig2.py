@@ -1,12 +1,12 @@
 #!/usr/bin/python3
-"""The paper's Fig. 2 (scp-method.md 14.1): the 1D jointed wave.
+"""The paper's Fig. 2 (docs/theory.md 14.1): the 1D jointed wave.
 
 usage: /usr/bin/python3 scripts/paper/fig2.py [--force] [--bar1d [DIR]]
 
 Runs inputs/paper/fig2_*.yaml through scpdyn (build/bin/scpdyn or $SCPDYN_BIN, one thread)
 into out/paper/fig2/<case>/ when their outputs are missing (--force: always), draws the
 velocity at the 80 mm gauge in the three panels of the paper's figure into out/paper/fig2.png,
-and prints the table of arrival times and peaks next to the reference numbers of spec 14.1
+and prints the table of arrival times and peaks next to the reference numbers of docs/theory.md 14.1
 (scp-ref/bar1d.py) and the checks of the expected outcomes (a)-(g). A run that stops with an
 error is drawn up to its stop (marked x) and listed as stopped.
 
@@ -32,8 +32,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import make_fig2_decks as decks  # noqa: E402
 import paper_util as pu  # noqa: E402
 
-# spec 14.1 (bar1d.py, S = 0.5, C_safe = 0.5): arrival [us], peak [m/s], steps; the 10-cell rows
-# and the step counts are bar1d.py's run() with the same arguments (cells_per_block=10,
+# docs/theory.md 14.1 (bar1d.py, S = 0.5, C_safe = 0.5): arrival [us], peak [m/s], steps; the
+# 10-cell rows and the step counts are bar1d.py's run() with the same arguments (cells_per_block=10,
 # ncell=1000), computed for this script
 REFERENCE = {
     "solid": (14.78, 495, 541),
@@ -86,7 +86,7 @@ def fmt(x, f="%.2f"):
 def compare_bar1d(R, where):
     """E2 of the gauge history against bar1d.py run with the deck's settings."""
     sys.path.insert(0, where)
-    import bar1d  # noqa: E402  (spec 14.1 reference, pure Python)
+    import bar1d  # noqa: E402  (docs/theory.md 14.1 reference, pure Python)
 
     print("\n| case | E2 vs bar1d (0-55 us) | E2, arrivals aligned |")
     print("|---|---|---|")
@@ -151,7 +151,7 @@ def main():
     if args.bar1d:
         compare_bar1d(R, args.bar1d)
 
-    print("\nExpected outcomes of spec 14.1 (measured):")
+    print("\nExpected outcomes of docs/theory.md 14.1 (measured):")
     ok = lambda c: not R[c]["failed"] and R[c]["arrival"] is not None  # noqa: E731
     a = {c: R[c]["arrival"] * 1e6 for c in cases if ok(c)}
     p = {c: R[c]["peak"] for c in cases if ok(c)}

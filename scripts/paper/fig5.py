@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The paper's Fig. 5 (scp-method.md 14.3, verification.md T5/T10b): 2D block normal impact at
+"""The paper's Fig. 5 (docs/theory.md 14.3, verification.md T5/T10b): 2D block normal impact at
 1 km/s, quasi-implicit against explicit joints (limit (19) off) at S = 0.5, 0.1, 0.05.
 
 usage: /usr/bin/python3 scripts/paper/fig5.py [--force]
@@ -92,8 +92,8 @@ def main():
               f"| {'-' if plateau is None else '%+.1f %%' % (100 * (plateau / SIGMA_REF - 1))} "
               f"| {'-' if e2 is None else '%.3f' % e2} | {tv:.1f}, {tv_v:.1f} | {emax:.2e} | {s['cycles']} "
               f"| {s['wall_time']:.2f} |")
-    print("\nExpected (spec 14.3): explicit S = 0.5 crashes, S = 0.1 unstable, S = 0.05 agrees "
-          "with implicit; implicit stable and smooth at S = 0.5.")
+    print("\nExpected (docs/theory.md 14.3): explicit S = 0.5 crashes, S = 0.1 unstable, "
+          "S = 0.05 agrees with implicit; implicit stable and smooth at S = 0.5.")
 
 
 if __name__ == "__main__":

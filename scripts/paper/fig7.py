@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The paper's Fig. 7 (scp-method.md 14.4): sliding impact with dilation, implicit and explicit
+"""The paper's Fig. 7 (docs/theory.md 14.4): sliding impact with dilation, implicit and explicit
 joints, with the consistent dilation (Eq. 15-16) and with the explicit adjustment.
 
 usage: /usr/bin/python3 scripts/paper/fig7.py [--force] [--vt200]
@@ -99,8 +99,8 @@ def scene(force, tag, title, substitution):
                         [(a["time"], a[k]) for k, _, _ in SERIES[:2]], WINDOW)
         print(f"{o} joints: E2 of the normal stresses, adjusted vs consistent dilation: "
               + ("-" if e2 is None else f"{e2:.3f}"))
-    print("\nExpected (spec 14.4): consistent dilation smooth for implicit and explicit joints; "
-          "the explicit adjustment oscillates.")
+    print("\nExpected (docs/theory.md 14.4): consistent dilation smooth for implicit and "
+          "explicit joints; the explicit adjustment oscillates.")
 
 
 if __name__ == "__main__":

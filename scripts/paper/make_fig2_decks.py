@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Writes the decks of the paper's Fig. 2 (scp-method.md 14.1): the 1D jointed wave.
+"""Writes the decks of the paper's Fig. 2 (docs/theory.md 14.1): the 1D jointed wave.
 
 usage: /usr/bin/python3 scripts/paper/make_fig2_decks.py [--strip] [--out DIR]
        (default DIR: inputs/paper; the decks are committed, this script only regenerates them)
@@ -18,7 +18,7 @@ import os
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 L, V0, X_IMPACT, X_GAUGE, T_END = 0.1, 1000.0, 0.01, 0.08, 60e-6
-E0 = 0.05  # GPa (spec 14.1 [A])
+E0 = 0.05  # GPa (docs/theory.md 14.1 [A])
 # The impactor starts GAP short of the target, for two reasons: a CP created between faces that
 # touch at t = 0 gets its closure from the half-step geometry (v dt/2 = 0.056 mm at h = 1 mm),
 # more than the smaller apertures; and the first cycle's dt is fixed before the CPs exist, so an
@@ -62,7 +62,7 @@ def deck(name, option, a, cpb, comment, strip, courant=0.5, c_safe="0.5", extra_
     h = bsize / cpb
     width = h  # strip height = one cell
     head = [
-        f"# Paper Fig. 2 (scp-method.md 14.1): 1D jointed wave, {comment}.",
+        f"# Paper Fig. 2 (docs/theory.md 14.1): 1D jointed wave, {comment}.",
         "# 10 mm at 1 km/s hits 90 mm; free ends; limestone rho 2600, c 4500 m/s (M = 52.65 GPa);",
         f"# {nblock} blocks of {bsize * 1e3:g} mm, {cpb} cell(s) per block (h = {h * 1e3:g} mm), "
         "every block its own part;",

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Speed against accuracy of the contact updates (issue 3's headline chart): error against a
+"""Speed against accuracy of the contact updates: error against a
 converged reference versus wall time, for explicit and quasi-implicit joints across Courant
 numbers and resolutions, and the stability map (which combinations stop with a diverging
 contact), for two scenes:

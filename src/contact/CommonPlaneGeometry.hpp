@@ -1,6 +1,6 @@
 #pragma once
 /// \file CommonPlaneGeometry.hpp
-/// \brief Common-plane (CP) geometry, sub-steps B-D of scp-method.md section 4: face centroid,
+/// \brief Common-plane (CP) geometry, sub-steps B-D of docs/theory.md section 4: face centroid,
 /// normal and area (4.1), CP normal and point (4.2), local basis and projection (4.3), overlap
 /// polygon, contact area and point of contact (4.4-4.6), area fractions (4.7) and the initial
 /// closure u0 (4.8), and the nodal weights of the CP force (section 8). Device-callable,

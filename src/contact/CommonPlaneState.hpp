@@ -1,7 +1,7 @@
 #pragma once
 /// \file CommonPlaneState.hpp
 /// \brief Joint (common-plane contact) parameters and per-CP history, both POD so they can live
-/// in Views and be copied into kernels. Equation numbers refer to shared/docs/scp-method.md.
+/// in Views and be copied into kernels. Equation numbers refer to docs/theory.md.
 #include "core/ScalarOps.hpp"
 #include "core/Types.hpp"
 
@@ -28,7 +28,7 @@ KOKKOS_INLINE_FUNCTION void cross(const Real x[3], const Real y[3], Real r[3])
 KOKKOS_INLINE_FUNCTION Real norm(const Real x[3]) { return kmath::sqrt(dot(x, x)); }
 } // namespace contact_math
 
-/// \brief Contact option of a CP (scp-method.md section 11).
+/// \brief Contact option of a CP (docs/theory.md section 11).
 enum class ContactOption : int
 {
   SlideLine = 0, ///< (24)/(D14): normal stop force, no shear

@@ -1,7 +1,7 @@
 #pragma once
 /// \file ContactChecks.hpp
 /// \brief The divergence test of step 9 (what stops a run) and the closure limits shared with
-/// the candidate rules of detection (scp-method.md 3.2, 3.4, 6.2). Device-callable.
+/// the candidate rules of detection (docs/theory.md 3.2, 3.4, 6.2). Device-callable.
 #include "contact/CommonPlaneState.hpp"
 
 namespace scpdyn
@@ -9,7 +9,7 @@ namespace scpdyn
 
 /// \brief Closure, in apertures, beyond which a joint counts as diverged [-].
 ///
-/// Not 1: with the modulus cap (6.2, D8) the closure is no longer bounded by a, and stable
+/// Not 1: with the modulus cap (6.2, D8) the closure is not bounded by a, and stable
 /// explicit runs pass it for a step or two (bar1d.py's explicit Fig. 2 references at C_safe =
 /// 0.5 reach u/a = 1.08 at the impact joint). At 2 a the capped law's stress is ~Emax
 /// (1e4 E0 by default, TPa for rock joints): only a diverging update gets there.

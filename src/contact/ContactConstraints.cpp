@@ -1,4 +1,4 @@
-// The velocity-constraint options of step 9 (scp-method.md 10.5, 10.8, 11.1, 11.2): all sticky
+// The velocity-constraint options of step 9 (docs/theory.md 10.5, 10.8, 11.1, 11.2): all sticky
 // and slide-line CPs are solved together, every cycle, as one linear system for their forces
 // (preconditioned conjugate gradients), with an active set for the slide lines' "no tension".
 //

@@ -1,7 +1,7 @@
 #pragma once
 /// \file ContactData.hpp
 /// \brief Device data of the common-plane contact: the contact faces (fixed for the run) and the
-/// common planes (CPs), each a struct of Views indexed by face or CP id (scp-method.md 3, 12).
+/// common planes (CPs), each a struct of Views indexed by face or CP id (docs/theory.md 3, 12).
 #include "contact/CommonPlaneState.hpp"
 
 #include <string>
@@ -26,7 +26,7 @@ struct ContactFaceData
   /// 1D only: the other node of the element behind the (point) face, which orients the face
   /// normal (4.1 in 1D); -1 in 2D and 3D
   IndexView back;
-  // Decomposed runs (issue 4): the faces of this rank and its ghost faces (faces of other
+  // Decomposed runs: the faces of this rank and its ghost faces (faces of other
   // ranks near its own, ascending key among them); a ghost face's element is -2 - its global
   // element id, its nodes may be ghost nodes (numbered after the local nodes).
   DeviceView<long *> key;   ///< global face key (3.5)

@@ -1,4 +1,4 @@
-// The end of step 9 (scp-method.md 6.7, 3.4): the divergence checks, then the contact forces and
+// The end of step 9 (docs/theory.md 6.7, 3.4): the divergence checks, then the contact forces and
 // their work applied. A failure restores the CP histories and applies nothing, so the outputs
 // written afterwards hold the last finite state.
 #include "contact/ContactChecks.hpp"

@@ -1,4 +1,4 @@
-// Step 9 of the cycle for every CP (scp-method.md Appendix A): half-step geometry (A-D), the
+// Step 9 of the cycle for every CP (docs/theory.md Appendix A): half-step geometry (A-D), the
 // option's force (E) and its distribution to the face nodes, the correction passes of the
 // velocity-constraint options (10.8) and the time-step limit (19). The checks and the contact
 // energy are in ContactFinish.cpp.

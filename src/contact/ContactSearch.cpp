@@ -1,4 +1,4 @@
-// Common-plane detection: face geometry, sorting bins, candidate pairs (scp-method.md 3.1-3.2).
+// Common-plane detection: face geometry, sorting bins, candidate pairs (docs/theory.md 3.1-3.2).
 #include "contact/ContactSearch.hpp"
 #include "contact/ContactChecks.hpp"
 

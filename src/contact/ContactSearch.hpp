@@ -1,6 +1,6 @@
 #pragma once
 /// \file ContactSearch.hpp
-/// \brief Detection of common planes (scp-method.md 3.1-3.2): half-step face geometry, global
+/// \brief Detection of common planes (docs/theory.md 3.1-3.2): half-step face geometry, global
 /// sorting bins (a uniform grid, compressed rows built by count -> scan -> fill) and the
 /// candidate face pairs with positive overlap. Device kernels; results are deterministic (every
 /// bin and every row is sorted).

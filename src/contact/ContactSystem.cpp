@@ -1,4 +1,4 @@
-// Contact runtime: set-up, detection with history matching, outputs (scp-method.md 3, 12).
+// Contact runtime: set-up, detection with history matching, outputs (docs/theory.md 3, 12).
 // The per-cycle force kernels are in ContactForces.cpp.
 #include "contact/ContactSystem.hpp"
 #include "core/HostCopy.hpp"

@@ -1,6 +1,6 @@
 #pragma once
 /// \file ContactSystem.hpp
-/// \brief The runtime of the Simple Common Plane contact (scp-method.md 2-12, Appendix A): owns
+/// \brief The runtime of the Simple Common Plane contact (docs/theory.md 2-12, Appendix A): owns
 /// the contact faces and the live common planes, runs detection (steps 3 and 9 on search
 /// cycles), the per-cycle CP forces (step 9), the explicit-contact time-step limit (19) and the
 /// contact energy. Used by the Solver; everything heavy runs in Kokkos kernels.
@@ -18,7 +18,7 @@ namespace scpdyn
 
 struct GhostFaceDesc;
 
-/// \brief What the contact of a decomposed run needs from the communication layer (issue 4);
+/// \brief What the contact of a decomposed run needs from the communication layer;
 /// empty members on one rank.
 struct ContactComm
 {
@@ -78,7 +78,7 @@ public:
   Real stableTimeStep(const NodeFields &nodes, const ElementFields &elements,
                       Real dt_element) const;
 
-  // Decomposed runs (issue 4): the Solver sets the communication once and, on search cycles
+  // Decomposed runs: the Solver sets the communication once and, on search cycles
   // (step 4), the ghost faces; each rank computes every CP with at least one of its own faces,
   // applies forces to its own faces only, and counts a CP in sums (energy, constraint solve,
   // outputs) on the rank of its face 1. energy(), storedEnergy() and maxCount() are then this

@@ -1,6 +1,6 @@
 #pragma once
 /// \file JointConstraints.hpp
-/// \brief The velocity-constraint options of the Simple Common Plane contact (scp-method.md
+/// \brief The velocity-constraint options of the Simple Common Plane contact (docs/theory.md
 /// 10.5, 10.8, 11): slide line (24)/(D14), sticky (25), sleepy (D15), the option dispatcher
 /// updateCp() and the inactive-CP update (3.4). Same conventions as JointLaw.hpp: F = Fn*n + Fs
 /// acts on face 2, -F on face 1.

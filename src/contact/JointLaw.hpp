@@ -1,6 +1,6 @@
 #pragma once
 /// \file JointLaw.hpp
-/// \brief Per-CP force update of the Simple Common Plane contact (scp-method.md sections 5-12):
+/// \brief Per-CP force update of the Simple Common Plane contact (docs/theory.md sections 5-12):
 /// hyperbolic normal law with max-closure memory (6.1, 6.2), Coulomb shear with softening and
 /// dilation (6.3, 6.4), tension cut-off and re-closing (6.5), traction history (6.6), energy
 /// increments (6.7), the explicit update (7) and its time step (19), the quasi-implicit update

@@ -1,6 +1,6 @@
 #pragma once
 /// \file PolygonClip.hpp
-/// \brief Planar polygon kernels of the common-plane overlap (scp-method.md 4.4): shoelace area
+/// \brief Planar polygon kernels of the common-plane overlap (docs/theory.md 4.4): shoelace area
 /// and first moments, convexity test, Sutherland-Hodgman clipping and the signed fan split of a
 /// non-convex polygon. Device-callable, fixed-size buffers, no allocation.
 #include "contact/CommonPlaneState.hpp"

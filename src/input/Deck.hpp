@@ -186,7 +186,7 @@ struct ContactSpec
 {
   std::vector<SurfaceSpec> surfaces;
   long search_interval = 1;  ///< cycles between CP searches; 0 = once, at the first cycle
-  int constraint_passes = 30; ///< iterations of the sticky and slide-line solvers (spec 10.8)
+  int constraint_passes = 30; ///< sticky/slide-line solve iterations (docs/theory.md 10.8)
   Real search_gap = -1;      ///< largest gap at which a CP is created [m]; < 0: largest face size
 };
 

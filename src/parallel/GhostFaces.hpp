@@ -1,6 +1,6 @@
 #pragma once
 /// \file GhostFaces.hpp
-/// \brief Ghost contact faces of a decomposed run (cycle steps 4 and 8, scp-method.md 2.2 and
+/// \brief Ghost contact faces of a decomposed run (cycle steps 4 and 8, docs/theory.md 2.2 and
 /// the parallel rules): which remote contact faces a rank needs, and the owner -> ghost copy
 /// of their node data every cycle.
 ///

@@ -75,7 +75,7 @@ private:
     const char *tmp = std::getenv("TMPDIR");
     std::string path = std::string(tmp && *tmp ? tmp : "/tmp") + "/scpdyn-mpi-XXXXXX";
     if (!mkdtemp(path.data()))
-      return; // Open MPI's default then, as before
+      return; // Open MPI's default session directory then
     _session_dir = path;
     setenv("OMPI_MCA_orte_tmpdir_base", path.c_str(), 1);
   }

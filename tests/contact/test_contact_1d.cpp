@@ -1,7 +1,7 @@
 // 1D point-face contact (dimension 1, line2 parts in uniaxial strain, 1 m^2 cross-section):
 // the CP geometry of two point faces; verification T1a through a contact interface (slide line,
 // sticky, implicit joint); T6a (tied column = merged column); the same deck in 1D and as a 2D
-// quad column on rollers with all four options; the paper's 1D jointed wave (scp-method.md 14.1).
+// quad column on rollers with all four options; the paper's 1D jointed wave (docs/theory.md 14.1).
 #include "ContactTestUtil.hpp"
 #include "contact/ContactSearch.hpp"
 
@@ -136,7 +136,7 @@ double plateau(const Histories &h) { return -windowMean(h.t, h.sxx, 12.8e-6, 21.
 
 // Sub-steps B-D for two point faces, by hand: left element [0, 1] mm, its +x end face; right
 // element [0.999, 2] mm (overlap 1 um), its -x end face. n = n1 = +x, Ac = 1 m^2, f = 1,
-// x_poc = midpoint, u0 = (c1 - c2).n = +1 um (positive closure = overlap, spec 4.8).
+// x_poc = midpoint, u0 = (c1 - c2).n = +1 um (positive closure = overlap, docs/theory.md 4.8).
 TEST(Contact1D, PointFaceGeometry)
 {
   const Real x1[2][3] = {{1.0e-3, 0, 0}, {0, 0, 0}};           // face node, element's other node
@@ -331,7 +331,7 @@ TEST(Contact1D, SameDeckIn1DAnd2D)
 namespace
 {
 
-/// The paper's 1D jointed wave (scp-method.md 14.1): 100 cells over 100 mm, limestone (rho 2600,
+/// The paper's 1D jointed wave (docs/theory.md 14.1): 100 cells over 100 mm, limestone (rho 2600,
 /// c 4500 m/s: E = rho c^2 with nu = 0), the first 10 mm at 1 km/s, free ends, linear viscosity
 /// q = 0.3 rho c |dv| in compression (C_lin = 0.3, C_quad = 0: our q = rho l (C_quad l trD^2 -
 /// C_lin c trD) with l the length is 0.3 rho c |dv| L0/L), S = 0.5. a_mm > 0: every cell a block
@@ -405,22 +405,23 @@ GaugeHistory runJointedWave(double a_mm, double gap, const std::string &name)
 
 } // namespace
 
-// Fig. 2 of the paper in 1D (spec 14.1, sets 2 and 3): implicit joints a = 1e-5 m and 1e-4 m,
-// 1 cell per block, and the solid bar; gauge velocity at 80 mm. Arrival = first v > 100 m/s.
+// Fig. 2 of the paper in 1D (docs/theory.md 14.1, sets 2 and 3): implicit joints a = 1e-5 m and
+// 1e-4 m, 1 cell per block, and the solid bar; gauge velocity at 80 mm. Arrival = first
+// v > 100 m/s.
 //
 // The impactor starts 0.2 mm short (impact at 0.2 us, subtracted from the arrival); a new CP's
 // closure is the overlap at x^n (docs/theory.md, contact runtime, item 12), so the CP starts
 // open at u0 = -gap, as in bar1d.py (which starts touching joints at u = 0).
 //
 // References (/usr/bin/python3):
-// 1. spec 14.1's table, from scp-ref/bar1d.py as published: solid 14.78 us / 495 m/s; a = 1e-5:
-//    15.89 us / 496.0 m/s; a = 1e-4: 33.44 us / 159.7 m/s. Its host model differs from ours:
-//    linear sigma = M (L/L0 - 1) against our hypoelastic midpoint update (sigma = M ln(L/L0)):
-//    5.6 % stiffer at the 11 % strain of the impact, so the front runs faster; q = 0.3 rho c0
-//    |dv| against 0.3 rho c_old |dv| L0/L; a fixed dt = S h/c0 against S min(L/c); no gap; and
-//    the new CP at u = 0 (ours too). bar1d.py with each of our choices switched on in turn (the
-//    mirror script, helpers/contact1d-bar1d-mirror.py) moves the a = 1e-5 arrival by +0.22 (gap),
-//    -0.22 (law), -0.11 us (viscosity) and the a = 1e-4 peak by -1.4 % +0.2 % +0.4 %. Tolerance:
+// 1. the table of docs/theory.md 14.1, from scp-ref/bar1d.py as published: solid 14.78 us /
+//    495 m/s; a = 1e-5: 15.89 us / 496.0 m/s; a = 1e-4: 33.44 us / 159.7 m/s. Its host model
+//    differs from ours: linear sigma = M (L/L0 - 1) against our hypoelastic midpoint update
+//    (sigma = M ln(L/L0)): 5.6 % stiffer at the 11 % strain of the impact, so the front runs
+//    faster; q = 0.3 rho c0 |dv| against 0.3 rho c_old |dv| L0/L; a fixed dt = S h/c0 against
+//    S min(L/c); no gap; and the new CP at u = 0 (ours too). bar1d.py with each of our choices
+//    switched on in turn moves the a = 1e-5 arrival by +0.22 (gap), -0.22 (law), -0.11 us
+//    (viscosity) and the a = 1e-4 peak by -1.4 % +0.2 % +0.4 %. Tolerance:
 //    arrival 0.5 us (4.5 steps, 3 % of the a = 1e-5 arrival), peak 4 %.
 // 2. the same script with all of our choices (gap 0.2 mm, our law, viscosity, dt; u0half=False,
 //    the closure at x^n): a = 1e-5: 15.811218 us / 495.92629 m/s, 551 steps; a = 1e-4:
@@ -461,7 +462,8 @@ TEST(Contact1D, JointedWaveFig2)
     // an elastic problem with viscosity and joints that dissipate: the balance stays small (T9)
     EXPECT_LT(g[k].balance, 5e-3);
   }
-  // spec 14.1 (c): softer joints give a later arrival; (d) and more reflection, a lower peak
+  // docs/theory.md 14.1 (c): softer joints give a later arrival; (d) and more reflection, a
+  // lower peak
   EXPECT_LT(solid.arrival, g[0].arrival - gap / v0);
   EXPECT_LT(g[0].arrival + 10e-6, g[1].arrival);
   EXPECT_LT(g[1].peak, 0.5 * g[0].peak);

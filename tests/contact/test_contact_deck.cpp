@@ -63,7 +63,7 @@ TEST(ContactDeck, Table1UnitsBecomeSI)
   EXPECT_DOUBLE_EQ(p.usp0, 50);
   EXPECT_EQ(p.option, ContactOption::Explicit);
   EXPECT_GT(p.C_safe, 1e30); // off
-  // derived defaults of the spec (D8), (D9)
+  // derived defaults (D8), (D9) of docs/theory.md
   EXPECT_DOUBLE_EQ(p.Emax, 1e4 * 5e8);
   EXPECT_NEAR(p.sigma_t, 1e6 / std::tan(38 * M_PI / 180), 1e-6);
   const JointParams q = jointParamsOf(d.contact.surfaces[1], 1);
@@ -148,7 +148,7 @@ TEST(ContactDeck, FacesOfSurfacesAndMasses)
   auto emass = Kokkos::create_mirror_view_and_copy(HostSpace(), s.elements().mass);
   for (Index f = 0; f < c->faces().count; ++f)
     EXPECT_DOUBLE_EQ(mass(f), 0.5 * emass(el(f)));
-  // keys ascend (face 1 of every CP is the smaller key, scp-method.md 3.5)
+  // keys ascend (face 1 of every CP is the smaller key, docs/theory.md 3.5)
   for (size_t f = 1; f < c->faceInfo().size(); ++f)
     EXPECT_LT(c->faceInfo()[f - 1].key, c->faceInfo()[f].key);
 }

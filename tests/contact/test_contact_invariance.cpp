@@ -1,4 +1,4 @@
-// Invariants of the CP forces (scp-method.md 8.3, 3.5) and the contact outputs: forces sum to
+// Invariants of the CP forces (docs/theory.md 8.3, 3.5) and the contact outputs: forces sum to
 // zero, swapping the face order gives the same physics with opposite CP forces, the outputs
 // (contacts.xmf/h5, summary.json, history.csv) carry the contact data.
 #include "ContactTestUtil.hpp"

@@ -1,13 +1,13 @@
-// Regressions of five contact-runtime problems (reported with minimal decks in
-// the paper-scene work, docs/verification.md "Runtime issues", docs/theory.md "Contact: the runtime"):
-// 1. a CP created between bodies touching at x^n with a relative velocity started pre-closed by
-//    Vn dt/2 (its (D7) closure came from the half-step geometry);
-// 2. penetration weights of exactly aligned faces drove the faces' zigzag mode (stiffness
-//    F/sum(delta)) and a stiff implicit joint blew up;
-// 3. the check "closure <= a" stopped explicit runs the spec expects to work (6.2: with the cap
-//    the closure is no longer bounded by a);
-// 4. a CP whose faces slide apart counted as divergence;
-// 5. a joint closed by more than half a face lost its CP and the blocks passed through.
+// Five contact-runtime failures, each on a minimal deck of the paper's scenes
+// (docs/verification.md "Runtime issues", docs/theory.md "Contact: the runtime"):
+// 1. a CP created between bodies touching at x^n with a relative velocity must not start
+//    pre-closed by Vn dt/2, as it would with its (D7) closure from the half-step geometry;
+// 2. penetration weights of exactly aligned faces must not drive the faces' zigzag mode
+//    (stiffness F/sum(delta)) until a stiff implicit joint blows up;
+// 3. explicit runs that docs/theory.md 6.2 allows must not stop at a check "closure <= a" (with
+//    the cap the closure is not bounded by a);
+// 4. a CP whose faces slide apart must not count as divergence;
+// 5. a joint closed by more than half a face must keep its CP, or the blocks pass through.
 #include "ContactTestUtil.hpp"
 #include "contact/CommonPlaneGeometry.hpp"
 #include "contact/ContactChecks.hpp"
@@ -65,7 +65,7 @@ const std::string kRollers = "node_sets:\n  - {name: all, box: {min: [-1, -1], m
                              "component: y, value: 0}\n";
 
 /// Two 1 mm quads touching at t = 0, the left one at 1 km/s, rollers; implicit joint of aperture
-/// `a_mm`, E0 = 0.05 GPa (helper deck touching_at_start.yaml).
+/// `a_mm`, E0 = 0.05 GPa.
 std::string touchingDeck(const std::string &a_mm)
 {
   return "dimension: 2\ntime: {end: 1.0e-6, courant: 0.5}\n" + kLimestone +
@@ -81,8 +81,7 @@ std::string touchingDeck(const std::string &a_mm)
 }
 
 /// The paper's Fig. 2 as a plane-strain strip on rollers: 20 blocks of one 1 mm quad, the first
-/// 10 at 1 km/s and 0.06 mm short of the rest (helper decks strip_penetration_weights.yaml,
-/// explicit_closure_past_aperture.yaml). `joint`: the flow map of the surface after `part: "*"`.
+/// 10 at 1 km/s and 0.06 mm short of the rest. `joint`: the flow map of the surface after `part: "*"`.
 std::string stripDeck(const std::string &joint, double gap_mm, const std::string &end)
 {
   std::string d = "dimension: 2\ngeometry: plane_strain\ntime: {end: " + end +
@@ -119,8 +118,9 @@ double maxClosureRatio(const CpHost &h)
 
 // Bodies touching at x^0 with Vn = 1 km/s: the CP starts at u0 = 0 (the overlap at x^0), so the
 // first implicit step is (20) from zero closure on the virgin curve: u = dt (V* - dt Fn/m*),
-// Fn/Ac = E0 u/(a - u). Before the fix u0 was Vn dt/2 = 0.28 a, forgiven (umax = u0), and the
-// joint followed a hyperbola shifted by u0 (stiffer than its law for the whole run).
+// Fn/Ac = E0 u/(a - u). From the half-step geometry u0 would be Vn dt/2 = 0.28 a, forgiven
+// (umax = u0), and the joint would follow a hyperbola shifted by u0 (stiffer than its law for
+// the whole run).
 TEST(ContactRegression, TouchingBodiesStartUnloaded)
 {
   Solver s(deckFromText(touchingDeck("0.2"), "touching_a0.2"));
@@ -132,8 +132,8 @@ TEST(ContactRegression, TouchingBodiesStartUnloaded)
   const JointParams &P = h.params[0];
   // no internal force yet in cycle 0 (undeformed mesh): V* = V0 = 1000 m/s
   const double u_expected = dt * (1000.0 - dt * q.Fn / h.mstar[0]);
-  // round-off of positions ~1e-3 m carried through one step: 1e-9 relative is ample; the old
-  // start was off by 0.5 (Vn dt/2 of Vn dt)
+  // round-off of positions ~1e-3 m carried through one step: 1e-9 relative is ample; a
+  // half-step start would be off by 0.5 (Vn dt/2 of Vn dt)
   EXPECT_NEAR(q.u, u_expected, 1e-9 * u_expected);
   EXPECT_LT(q.u, jointCapClosure(P));
   EXPECT_NEAR(q.Fn / h.area[0], jointLoadingStress(P, q.u), 1e-9 * q.Fn / h.area[0]);
@@ -141,9 +141,9 @@ TEST(ContactRegression, TouchingBodiesStartUnloaded)
   RecordProperty("u_over_a_after_cycle0", sci(q.u / P.a));
 }
 
-// The helper's deck: a = 0.01 mm < Vn dt/2 = 0.056 mm. It stopped at cycle 0 ("closure passed
-// the aperture"); now the joint loads from zero and, at the 5.85 GPa of the impact (117 E0 <
-// 199 E0 of 6.2), stays below its aperture.
+// touchingDeck() with a = 0.01 mm < Vn dt/2 = 0.056 mm: a half-step start would put the closure
+// past the aperture at cycle 0 and stop the run; the joint must load from zero and, at the
+// 5.85 GPa of the impact (117 E0 < 199 E0 of 6.2), stay below its aperture.
 TEST(ContactRegression, TouchingBodiesSmallApertureRuns)
 {
   Solver s(deckFromText(touchingDeck("0.01"), "touching_a0.01"));
@@ -193,9 +193,10 @@ TEST(ContactRegression, BlendedPenetrationWeights)
   EXPECT_GT(w[0], 1.0 - 2e-8 / 1e-5 - 1e-12);
 }
 
-// The helper's strip with stiff implicit joints (a = 1e-4 mm, K = 5e18 Pa/m) and the default
-// penetration weights stopped at cycle 20 (the zigzag mode of the aligned faces grew ~1000x per
-// cycle, 6 -> 17 GPa). Now it runs, and with exactly aligned faces it is the POC run.
+// stripDeck() with stiff implicit joints (a = 1e-4 mm, K = 5e18 Pa/m) and the default
+// penetration weights: with plain (17)-(18) the zigzag mode of the aligned faces grows ~1000x per
+// cycle (6 -> 17 GPa by cycle 20); with the blend of docs/theory.md 8.1 it runs, and with exactly
+// aligned faces it is the POC run.
 TEST(ContactRegression, AlignedStripPenetrationWeightsRun)
 {
   const std::string joint = "option: implicit, a: 1.0e-4, E0: 0.05, C: 0.0, sigma_t: 0.0";
@@ -211,7 +212,7 @@ TEST(ContactRegression, AlignedStripPenetrationWeightsRun)
       if (h.area[p] > 0)
         sigma_max = std::max(sigma_max, h.state[p].Fn / h.area[p]);
   }
-  // bar1d.py (same problem, 1D): 5.94 GPa at most; before the fix 17 GPa at the stop
+  // bar1d.py (same problem, 1D): 5.94 GPa at most; the unstable zigzag mode reaches 17 GPa
   EXPECT_LT(sigma_max, 6.5e9);
   auto va = Kokkos::create_mirror_view_and_copy(HostSpace(), pen.nodes().v);
   auto vb = Kokkos::create_mirror_view_and_copy(HostSpace(), poc.nodes().v);
@@ -253,9 +254,10 @@ TEST(ContactRegression, DivergenceTestUnits)
   EXPECT_TRUE(contactCreatedEnergy(nan, 0, 0, 0));
 }
 
-// The helper's explicit strip (a = 0.1 mm, limit (19) on, C_safe 0.5) stopped at cycle 12 with
-// u = 1.03 a; bar1d.py's explicit reference of the same problem reaches u/a = 1.03 and is the
-// spec's guide solution. Now it runs; the joints pass a (as in bar1d) and create no energy.
+// stripDeck() with explicit joints (a = 0.1 mm, limit (19) on, C_safe 0.5): the joints pass the
+// aperture (u = 1.03 a at cycle 12), as bar1d.py's explicit reference of the same problem does
+// (u/a = 1.03), so a check "closure <= a" would stop a stable run; it must run and create no
+// energy.
 TEST(ContactRegression, ExplicitJointsMayPassTheAperture)
 {
   const std::string joint = "option: explicit, a: 0.1, E0: 0.05, C: 0.0, sigma_t: 0.0, "
@@ -289,9 +291,9 @@ TEST(ContactRegression, VanishingCpClosureIsNotDivergence)
 }
 
 // Fig. 7 sliding impact (explicit joints, a = 5 um, limit on) on 11 x 11 blocks at Vt = 300 m/s:
-// the corner faces of the two blocks slide apart (Ac -> 0). It stopped at 3.72 us on such a CP
-// (u = 1.0008 a, "normal stress 1.2e11 Pa"); now it runs on (to 4.5 us here; to 10 us in 2.5 s
-// on one thread, balance 3e-4) with a closed energy balance.
+// the corner faces of the two blocks slide apart (Ac -> 0). A closure test on such a CP would
+// stop the run at 3.72 us (u = 1.0008 a, normal stress 1.2e11 Pa); it must run on (to 4.5 us
+// here; to 10 us in 2.5 s on one thread, balance 3e-4) with a closed energy balance.
 TEST(ContactRegression, SlidingApartCornerRuns)
 {
   std::string yaml = readText(std::string(SCPDYN_SOURCE_DIR) +
@@ -325,9 +327,10 @@ TEST(ContactRegression, SlidingApartCornerRuns)
 // ------------------------------------------------------- 5. closure beyond half a face ----
 
 // Fig. 5 refined 4x (h = 0.25 mm, a = 0.2 mm) as a strip on rollers: the joint closes by 0.92 a
-// = 0.18 mm > h/2. The CPs were deleted at the next search (side test with delta_pen = h/2) and
-// the blocks passed through each other (target at rest). Now the CPs stay and the interface
-// moves at V/2 (equal impedances: exact once the joint is steady).
+// = 0.18 mm > h/2. With delta_pen = h/2 in the side test the CPs would be deleted at the next
+// search and the blocks would pass through each other (target at rest); with the aperture in
+// delta_pen (docs/theory.md 3.2, rule 5) the CPs stay and the interface moves at V/2 (equal
+// impedances: exact once the joint is steady).
 TEST(ContactRegression, ClosureBeyondHalfAFaceKeepsTheCp)
 {
   const std::string yaml =

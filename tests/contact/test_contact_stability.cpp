@@ -1,4 +1,4 @@
-// Verification T10b (the paper's Fig. 5, scp-method.md 14.3): two 1.5 cm limestone blocks at
+// Verification T10b (the paper's Fig. 5, docs/theory.md 14.3): two 1.5 cm limestone blocks at
 // 1 km/s, joint a = 0.2 mm, E0 = 0.5 GPa; decks inputs/paper/fig5_{implicit,explicit}_S*.yaml.
 // The explicit update with its time-step limit off diverges at S = 0.5 and the run stops with
 // a clear error; the quasi-implicit update is stable at S = 0.5 and never creates energy;

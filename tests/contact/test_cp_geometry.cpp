@@ -1,4 +1,4 @@
-// Common-plane geometry (scp-method.md section 4) and nodal weights (section 8).
+// Common-plane geometry (docs/theory.md section 4) and nodal weights (section 8).
 #include "contact/CommonPlaneGeometry.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Joint gauges (gauges of kind `joint`, docs/input.md): the per-joint histories of issue 3, on
+// Joint gauges (gauges of kind `joint`, docs/input.md): the per-joint histories, on
 // the paper's block impact (Fig. 5 / T5: 1 km/s, a = 0.2 mm, E0 = 0.5 GPa, quasi-implicit
 // joint at S = 0.5, non-matching 15 x 15 / 16 x 16 meshes).
 #include "ContactTestUtil.hpp"
@@ -41,9 +41,9 @@ TEST(JointGauge, FollowsTheInterfaceAndTheJointLaw)
   const double plateau = windowMean(t, sn, 0.6e-6, 1.2e-6);
   EXPECT_NEAR(plateau / 5.85e9, 1.0, 0.03) << plateau;
   RecordProperty("plateau", sci(plateau));
-  // the virgin loading curve of the hyperbolic law (spec 6.1): sigma = E0 u / (a - u), i.e.
-  // u = a sigma / (E0 + sigma), at every sample while the joint loads (to ~1.2 us at S = 0.5:
-  // the closure only grows). The CPs in range carry the same stress to ~1e-5, so their
+  // the virgin loading curve of the hyperbolic law (docs/theory.md 6.1): sigma = E0 u / (a - u),
+  // i.e. u = a sigma / (E0 + sigma), at every sample while the joint loads (to ~1.2 us at
+  // S = 0.5: the closure only grows). The CPs in range carry the same stress to ~1e-5, so their
   // area-weighted closure is the law's at their stress; 1e-3
   const double a = 0.2e-3, E0 = 0.5e9;
   int checked = 0;

@@ -1,4 +1,4 @@
-// Normal joint law, energy, implicit update and explicit time step (scp-method.md 6.1, 6.2, 6.5,
+// Normal joint law, energy, implicit update and explicit time step (docs/theory.md 6.1, 6.2, 6.5,
 // 6.6, 6.7, 7, 9, 10). Reference numbers come from the Python prototypes in
 // shared/docs/scp-ref (run with /usr/bin/python3); each test names the script and arguments.
 #include "contact/JointConstraints.hpp"

@@ -1,6 +1,7 @@
 // Shear law, dilation, rotation objectivity, face swap and the velocity-constraint options
-// (scp-method.md 3.6, 5.1, 6.3, 6.4, 6.7, 7, 10.7, 10.8, 11). Reference numbers: worked_examples.py
-// (no arguments) and the closed forms of verification.md T3b/T11a evaluated with /usr/bin/python3.
+// (docs/theory.md 3.6, 5.1, 6.3, 6.4, 6.7, 7, 10.7, 10.8, 11). Reference numbers:
+// worked_examples.py (no arguments) and the closed forms of verification.md T3b/T11a evaluated
+// with /usr/bin/python3.
 #include "contact/JointConstraints.hpp"
 
 #include <gtest/gtest.h>

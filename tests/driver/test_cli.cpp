@@ -108,7 +108,7 @@ boundary_conditions:
 TEST(Cli, OneAndTwoThreadsAgree)
 {
   // a 2D scene with atomic scatter, which sums in another order on 2 threads, so gauges may
-  // differ by round-off only: 1e-10 of each gauge's largest magnitude (issue 2)
+  // differ by round-off only: 1e-10 of each gauge's largest magnitude
   const std::string text =
       test::readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/wall_pulse_2d.yaml");
   const std::string deck = test::writeWorkFile("wall_atomic.yaml", text + "numerics: {scatter: atomic}\n");

@@ -65,7 +65,7 @@ TEST(MaterialLibrary, DocumentedSetsConvert)
   EXPECT_EQ(st.model_params[kJcTroom], 294.0);     // default room temperature
   EXPECT_EQ(st.model_params[kJcRate0], 1.0);       // default reference rate
   EXPECT_EQ(st.model_params[kJcChi], 0.9);         // default Taylor-Quinney fraction
-  EXPECT_EQ(st.bulk, 7830.0 * 4578 * 4578);        // from the EOS, as before
+  EXPECT_EQ(st.bulk, 7830.0 * 4578 * 4578);        // from the EOS: rho0 c0^2
   const MaterialParams ls = makeMaterialParams(limestone());
   // the paper's limestone: P-wave speed 4500 m/s at 2600 kg/m^3
   EXPECT_LT(relErr(referenceSoundSpeed(ls), 4500), 1e-12);

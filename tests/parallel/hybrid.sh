@@ -1,5 +1,5 @@
 #!/bin/bash
-# Hybrid MPI x OpenMP (issue 4): every deck of tests/parallel/decks/ run as 1 rank x 1 thread,
+# Hybrid MPI x OpenMP: every deck of tests/parallel/decks/ run as 1 rank x 1 thread,
 # 2 ranks x 1 thread and 1 rank x 2 threads; history.csv and gauges.csv of the last two must
 # agree with the first within 1e-9 (relative to the magnitude of each energy group, momentum
 # vector and gauge vector or tensor; see test_solver_decomposed.cpp for why such scales).

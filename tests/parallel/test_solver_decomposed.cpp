@@ -1,4 +1,4 @@
-// The decomposed Solver (issue 4) against the serial one: energies, momentum and gauges of
+// The decomposed Solver against the serial one: energies, momentum and gauges of
 // whole runs agree between 1 rank and the ranks of this mpirun (np = 1, 2, 3, 4 in ctest).
 // The serial reference runs on MPI_COMM_SELF of rank 0 and is broadcast.
 #include "../TestUtil.hpp"
@@ -180,7 +180,7 @@ TEST(SolverDecomposed, MergedBlocksMatchSerial)
   expectInvariant("merged blocks 3D", "merged_blocks_3d.yaml", 60);
 }
 
-// Rank-count invariance with contact (issue 4): the cross-rank common planes are computed on
+// Rank-count invariance with contact: the cross-rank common planes are computed on
 // both ranks from exact ghost copies, forces go to local faces only, the contact and pressure
 // partials are summed in step 10b, CPs count once in the energies. Pass: 1e-9 relative. The
 // round-off of the shared-node sums is ~1e-15; the constraint solves (sticky, slide line)

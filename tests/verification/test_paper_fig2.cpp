@@ -1,6 +1,6 @@
-// The paper's Fig. 2 (scp-method.md 14.1), coarse: the committed decks inputs/paper/fig2_*.yaml
+// The paper's Fig. 2 (docs/theory.md 14.1), coarse: the committed decks inputs/paper/fig2_*.yaml
 // (1 cell per 1 mm block) run in-process to 40 us, and the expected outcomes (a)-(e) asserted
-// on the velocity gauge at 80 mm. Reference numbers: scp-ref/bar1d.py (spec 14.1 table).
+// on the velocity gauge at 80 mm. Reference numbers: scp-ref/bar1d.py (docs/theory.md 14.1 table).
 // The jointed decks start the impactor 0.222 mm short of the target (scripts/paper/
 // make_fig2_decks.py), so their impact is at 0.222 us; times below are measured from the impact.
 #include "TestUtil.hpp"
@@ -16,7 +16,7 @@ using namespace scpdyn;
 namespace
 {
 constexpr Real kImpact = 2 * 0.5 * 1e-3 / 4500.0; // GAP / V0 of make_fig2_decks.py: 2 steps [s]
-constexpr Real kThreshold = 100.0;  // arrival: first v > 100 m/s (spec 14.1)
+constexpr Real kThreshold = 100.0;  // arrival: first v > 100 m/s (docs/theory.md 14.1)
 
 struct Signal
 {
@@ -52,8 +52,8 @@ Signal runCase(const std::string &name)
 
 } // namespace
 
-// (a)-(d) of spec 14.1 with the reference arrival shifts of bar1d.py (solid 14.78 us; very
-// stiff +0.00, a = 0.01 mm +1.11, a = 0.1 mm +18.66 us; peaks 495, 496, 496, 160 m/s).
+// (a)-(d) of docs/theory.md 14.1 with the reference arrival shifts of bar1d.py (solid 14.78 us;
+// very stiff +0.00, a = 0.01 mm +1.11, a = 0.1 mm +18.66 us; peaks 495, 496, 496, 160 m/s).
 // Tolerances: two time steps (0.22 us at S = 0.5) for equal arrivals: the jointed bars' front
 // trails the merged bar's by about one step here (+0.11 us; bar1d: 0), and a real delay of the
 // stiff joints (a = 1e-3 mm: +0.11 us in bar1d) is of that size; the code's finite-strain elements

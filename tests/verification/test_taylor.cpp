@@ -150,7 +150,7 @@ TEST(TaylorBarT7b, Steel4340At208)
 TEST(TaylorBarT7b, OfhcCopperAt190)
 {
   // test (Johnson & Cook 1983 via Zerilli & Armstrong 1987): L_f = 16.21 mm, D_f = 13.56 mm.
-  // The foot diameter meets the 8 % (+6.7 %). The final length does NOT meet its 3 %:
+  // The foot diameter meets T7b's 8 % (+6.7 %). The final length does NOT meet its 3 %:
   // it is +6.8 % (17.31 mm), mesh-converged (5 / 10 / 20 cells across the radius: 17.30 /
   // 17.31 / 17.33 mm), insensitive to the hourglass type (0.2 %) and to the rate measure
   // (plastic or total: < 0.01 %), and the bar is 7-10 % too thin over 40-70 % of its height in
