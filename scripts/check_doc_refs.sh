@@ -15,7 +15,7 @@
 # Usage: scripts/check_doc_refs.sh [REPO_ROOT]
 set -euo pipefail
 root="${1:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)}"
-exec python3 - "$root" <<'PY'
+exec /usr/bin/python3 - "$root" <<'PY'
 import os
 import re
 import sys

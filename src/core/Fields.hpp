@@ -2,7 +2,6 @@
 /// \file Fields.hpp
 /// \brief Plain structs of Views, one View per field, grouped by entity.
 #include "core/Types.hpp"
-#include "material/MaterialParams.hpp"
 
 namespace scpdyn
 {

@@ -3,7 +3,7 @@
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
-#include "driver/Decomposition.hpp"
+#include "parallel/Decomposition.hpp"
 #include "material/MaterialLibrary.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -87,7 +87,7 @@ bool Outputs::root() const { return _solver.rank() == 0; }
 void Outputs::begin()
 {
   const Deck &deck = _solver.deck();
-  const SolverDecomposition *dd = _solver.decomposition();
+  const DomainDecomposition *dd = _solver.decomposition();
   _has_contacts = _solver.contact() != nullptr;
   _material_used.assign(_solver.materialParams().size(), 0);
   {
@@ -334,7 +334,7 @@ void Outputs::finish(const std::string &error)
     wall = hi.back();
   }
   JsonObject decomposition;
-  if (const SolverDecomposition *dd = _solver.decomposition())
+  if (const DomainDecomposition *dd = _solver.decomposition())
   {
     // per rank: subdomain size and bytes sent per cycle (shared-node sums of steps 7 and 10b
     // and of the constraint solves, ghost copies of step 8, ghost rebuilds of step 4)

@@ -1,8 +1,8 @@
-// The 13-step cycle of the paper (scp-method.md 2.2), read top to bottom in Solver::cycle().
+// The 13-step cycle of the paper (docs/theory.md 2.2), read top to bottom in Solver::cycle().
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
-#include "driver/Decomposition.hpp"
+#include "parallel/Decomposition.hpp"
 #include "driver/Outputs.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -13,6 +13,27 @@
 namespace scpdyn
 {
 
+Solver::Solver(const Deck &deck, MPI_Comm comm) : _m(deck, comm)
+{
+  startCycles();
+}
+
+Solver::~Solver() = default;
+
+void Solver::startCycles()
+{
+  // the first time step, and the energies the balance starts from
+  _controls = _m.controls;
+  NodeSums s = nodeSums(_m.nodes, _m.dd ? _m.dd->owned_device : IndexView());
+  TimeStepLimits first;
+  first.element = _m.initial_element_step;
+  _dt_next = nextTimeStep(first, timeStepControls(), s, _m.dd ? _m.comm : MPI_COMM_NULL);
+  _last_sums = s;
+  _kinetic_mid = s.kinetic;
+  _initial_energy = 0;
+  _initial_energy = s.kinetic + energies().internal;
+  _energy_scale = std::abs(_initial_energy);
+}
 void Solver::cycle()
 {
   const auto start = std::chrono::steady_clock::now();
@@ -37,56 +58,25 @@ void Solver::cycle()
 }
 
 // Steps 4 and 8 (ghost contact faces) are in src/driver/ContactGhosts.cpp, 7 and 10b in
-// src/driver/Decompose.cpp.
-
-Index Solver::meshElementOfDevice(Index device) const
-{
-  for (size_t k = 0; k < _host_to_device_element.size(); ++k)
-    if (_host_to_device_element[k] == device)
-      return Index(k);
-  return device;
-}
-
-void Solver::setupContact()
-{
-  if (_deck.contact.surfaces.empty())
-    return;
-  ContactMeshInput in;
-  in.deck = &_deck;
-  in.mesh = &_mesh;
-  in.external_faces = &_external_faces;
-  in.face_sets = &_face_sets;
-  in.host_to_device_element = &_host_to_device_element;
-  in.nodes = _nodes;
-  in.elems = _elems;
-  if (_dd)
-  {
-    in.global_element = &_dd->global_element;
-    MPI_Comm comm = _comm;
-    in.global_count = [comm](long long n) { return allReduceSum(n, comm); };
-  }
-  _contact = std::make_shared<ContactSystem>(in);
-  if (_dd)
-    setupContactGhosts();
-}
+// src/driver/SharedNodeSteps.cpp; set-up in src/model/.
 
 void Solver::stepSortIntoBins()
 {
   // decomposed: the search sorts in step 9, once the ghost faces have this cycle's data
-  if (!_contact || _dd)
+  if (!_m.contact || _m.dd)
     return;
   ScopedStep t(_timers, "03_sort_into_bins");
-  _contact->sortIntoBins(_nodes, _dt, _cycle);
+  _m.contact->sortIntoBins(_m.nodes, _dt, _cycle);
 }
 
 void Solver::stepContactForces()
 {
-  if (!_contact)
+  if (!_m.contact)
     return;
   ScopedStep t(_timers, "09_contact_forces");
-  const ContactFailure f = _contact->computeForces(_nodes, _bc, _dt, _cycle, _time);
+  const ContactFailure f = _m.contact->computeForces(_m.nodes, _m.bc, _dt, _cycle, _time);
   collectiveCheck(f.failed ? f.message : std::string());
-  if (_dd && _contact->searchDue(_cycle) && !_contact->searchDue(_cycle + 1))
+  if (_m.dd && _m.contact->searchDue(_cycle) && !_m.contact->searchDue(_cycle + 1))
     restrictGhosts(); // until the next search, ghost data only for the faces of live CPs
 }
 
@@ -94,7 +84,7 @@ void Solver::stepZeroForces()
 {
   ScopedStep t(_timers, "05_zero_forces");
   if (!_forces_zeroed) // else the last cycle's step 12 did it in its sweep over the nodes
-    zeroForces(_nodes, _deck.gravity.data(), _external_loads);
+    zeroForces(_m.nodes, _m.deck.gravity.data(), _m.external_loads);
   _forces_zeroed = false;
 }
 
@@ -102,16 +92,16 @@ void Solver::stepElementSolvers()
 {
   ScopedStep t(_timers, "06_element_solvers");
   _controls = elementControls();
-  if (_sweep.active) // step 12 of the early nodes, in this step's sweep
+  if (_m.sweep.active) // step 12 of the early nodes, in this step's sweep
   {
-    _sweep.node = nodeIntegrator(_nodes, _bc.velocity_current, _dt,
-                                 _dd ? _dd->owned_device : IndexView(), _deck.gravity.data());
-    _sweep.loads = _external_loads;
+    _m.sweep.node = nodeIntegrator(_m.nodes, _m.bc.velocity_current, _dt,
+                                 _m.dd ? _m.dd->owned_device : IndexView(), _m.deck.gravity.data());
+    _m.sweep.loads = _m.external_loads;
   }
   const ElementStepResult r =
-      computeElementForces(_groups, _controls, _nodes, _elems, _materials, _corners, _sweep);
+      computeElementForces(_m.groups, _controls, _m.nodes, _m.elems, _m.materials, _m.corners, _m.sweep);
   if (_controls.gather)
-    gatherCornerForces(_nodes, _corners);
+    gatherCornerForces(_m.nodes, _m.corners);
   std::string error;
   if (!r.ok())
   {
@@ -127,20 +117,20 @@ void Solver::stepElementSolvers()
   collectiveCheck(error); // every rank stops before the shared-node exchange
   _limits.element = r.dt;
   if (_check_sweep)
-    snapshotEarlyNodes(_nodes, _early_snapshot);
+    snapshotEarlyNodes(_m.nodes, _early_snapshot);
 }
 
 void Solver::stepFaceBoundaryConditions()
 {
   ScopedStep t(_timers, "10_face_bcs");
-  updateLoadValues(_bc, _time + 0.5 * _dt);
-  applyFaceLoads(_bc, _nodes, _dt, _deck.dimension, _deck.geometry);
+  updateLoadValues(_m.bc, _time + 0.5 * _dt);
+  applyFaceLoads(_m.bc, _m.nodes, _dt, _m.deck.dimension, _m.deck.geometry);
 }
 
 void Solver::stepNodeBoundaryConditions()
 {
   ScopedStep t(_timers, "11_node_bcs");
-  applyNodeForces(_bc, _nodes);
+  applyNodeForces(_m.bc, _m.nodes);
 }
 
 void Solver::stepUpdateNodes()
@@ -148,17 +138,17 @@ void Solver::stepUpdateNodes()
   ScopedStep t(_timers, "12_update_nodes");
   if (_check_sweep)
     checkEarlyNodes();
-  updateVelocityValues(_bc, _time + _dt);
-  _last_sums = updateNodes(_nodes, _bc, _dt, _deck.dimension,
-                           _dd ? _dd->owned_device : IndexView(), _external_loads,
-                           _deck.gravity.data(), _sweep.active ? &_sweep.late_runs : nullptr);
-  if (_sweep.active) // the early nodes' sums, from step 6
-    _last_sums += sweepSums(_sweep);
+  updateVelocityValues(_m.bc, _time + _dt);
+  _last_sums = updateNodes(_m.nodes, _m.bc, _dt, _m.deck.dimension,
+                           _m.dd ? _m.dd->owned_device : IndexView(), _m.external_loads,
+                           _m.deck.gravity.data(), _m.sweep.active ? &_m.sweep.late_runs : nullptr);
+  if (_m.sweep.active) // the early nodes' sums, from step 6
+    _last_sums += sweepSums(_m.sweep);
   _forces_zeroed = true;
-  const MPI_Comm comm = _dd ? _comm : MPI_COMM_NULL;
+  const MPI_Comm comm = _m.dd ? _m.comm : MPI_COMM_NULL;
   _limits.contact = 1e300;
-  if (_contact && _contact->hasExplicit()) // (19), from v^{n+1}
-    _limits.contact = _contact->stableTimeStep(_nodes, _elems,
+  if (_m.contact && _m.contact->hasExplicit()) // (19), from v^{n+1}
+    _limits.contact = _m.contact->stableTimeStep(_m.nodes, _m.elems,
                                                elementStep(_limits, timeStepControls(), comm));
   _dt_next = nextTimeStep(_limits, timeStepControls(), _last_sums, comm);
   _external_work += _last_sums.external_work;
@@ -175,8 +165,8 @@ void Solver::stepUpdateNodes()
 void Solver::checkEarlyNodes() const
 {
   std::string what;
-  const Index n = earlyNodeWrittenLate(_sweep, _nodes, _early_snapshot, _external_loads,
-                                       _deck.gravity.data(), &what);
+  const Index n = earlyNodeWrittenLate(_m.sweep, _m.nodes, _early_snapshot, _m.external_loads,
+                                       _m.deck.gravity.data(), &what);
   std::string error;
   if (n >= 0)
     error = "node " + std::to_string(globalNode(n)) + " was integrated in step 6 and then " +
@@ -191,8 +181,8 @@ long Solver::run(const std::string &output_dir)
   out.begin();
   try
   {
-    while (_time < _deck.end_time &&
-           (_deck.max_cycles < 0 || _cycle < _deck.max_cycles))
+    while (_time < _m.deck.end_time &&
+           (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles))
     {
       cycle();
       out.afterCycle();

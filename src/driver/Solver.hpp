@@ -1,15 +1,13 @@
 #pragma once
 /// \file Solver.hpp
-/// \brief The explicit Lagrangian solver: owns the problem's data and runs the 13-step cycle
-/// of the paper (scp-method.md section 2) in Solver::cycle().
-#include "bc/BoundaryConditions.hpp"
-#include "core/Fields.hpp"
+/// \brief The explicit Lagrangian solver: runs the 13-step cycle of the paper (docs/theory.md
+/// 2.2) in Solver::cycle() on the Model that set-up built (model/Model.hpp), and holds what
+/// changes from cycle to cycle: time, time step, energies, timers.
 #include "core/Timers.hpp"
-#include "element/ElementForces.hpp"
+#include "integrate/LateNodes.hpp"
 #include "integrate/NodeUpdate.hpp"
 #include "integrate/TimeStep.hpp"
-#include "input/Deck.hpp"
-#include "mesh/HostMesh.hpp"
+#include "model/Model.hpp"
 
 #include <mpi.h>
 
@@ -20,7 +18,7 @@ namespace scpdyn
 
 class Outputs;
 class ContactSystem;
-struct SolverDecomposition;
+struct DomainDecomposition;
 
 /// \brief A run that cannot go on (inverted element, non-finite state); the message names
 /// the element and cycle. main() exits with status 3 after the outputs are flushed.
@@ -42,21 +40,11 @@ struct EnergyReport
   Real contact_dissipation = 0; ///< part of `contact` dissipated (contact - stored)
 };
 
-/// \brief A gauge resolved to a node or element id and quantity codes.
-struct GaugeSlot
-{
-  std::string column;
-  bool on_element = false;
-  Index id = -1;
-  int quantity = 0;
-  int joint = -1; ///< joint gauges: index of the gauge's point and radius (else -1)
-};
-
 class Solver
 {
 public:
-  /// \brief Set-up (steps 1 and 2): meshes, sets, materials, BCs, initial state. With more
-  /// than one rank in `comm` the mesh is decomposed (issue 4): every rank reads the same deck
+  /// \brief Set-up (steps 1 and 2): builds the Model (model/Model.hpp) and the first time step.
+  /// With more than one rank in `comm` the mesh is decomposed: every rank reads the same deck
   /// and keeps its own elements, nodes and faces; every member function below is then
   /// collective over `comm` unless it says otherwise. One rank runs exactly the serial code.
   explicit Solver(const Deck &deck, MPI_Comm comm = MPI_COMM_WORLD);
@@ -78,23 +66,23 @@ public:
     return c;
   }
   long cycles() const { return _cycle; }
-  const Deck &deck() const { return _deck; }
+  const Deck &deck() const { return _m.deck; }
   /// \brief This rank's mesh (the whole mesh on one rank).
-  const HostMesh &mesh() const { return _mesh; }
-  const NodeFields &nodes() const { return _nodes; }
-  const ElementFields &elements() const { return _elems; }
-  const std::vector<GaugeSlot> &gauges() const { return _gauges; }
-  const BoundaryConditions &boundaryConditions() const { return _bc; }
+  const HostMesh &mesh() const { return _m.mesh; }
+  const NodeFields &nodes() const { return _m.nodes; }
+  const ElementFields &elements() const { return _m.elems; }
+  const std::vector<GaugeSlot> &gauges() const { return _m.gauges; }
+  const BoundaryConditions &boundaryConditions() const { return _m.bc; }
   const StepTimers &timers() const { return _timers; }
   /// \brief Wall-clock time spent in cycle() so far on this rank [s] (the steps' timers plus
   /// whatever runs between them).
   double cycleWallTime() const { return _cycle_wall; }
-  const std::vector<ElementGroup> &groups() const { return _groups; }
-  const std::vector<MaterialParams> &materialParams() const { return _materials_host; }
+  const std::vector<ElementGroup> &groups() const { return _m.groups; }
+  const std::vector<MaterialParams> &materialParams() const { return _m.materials_host; }
   /// \brief The materials as the element step reads them (device copy of materialParams()).
-  const DeviceView<MaterialParams *> &materials() const { return _materials; }
+  const DeviceView<MaterialParams *> &materials() const { return _m.materials; }
   /// \brief Device element id of a mesh element id (parts numbered in deck order).
-  Index deviceElement(Index mesh_element) const { return _host_to_device_element[size_t(mesh_element)]; }
+  Index deviceElement(Index mesh_element) const { return _m.host_to_device_element[size_t(mesh_element)]; }
   /// \brief Current energies and momentum of the whole model (reduces over elements and
   /// ranks; not free).
   EnergyReport energies() const;
@@ -103,44 +91,37 @@ public:
   std::vector<Real> gaugeValues() const;
   /// \brief Step 12 inside step 6 (inactive with numerics.node_update separate, or with
   /// atomic adds on more than one thread).
-  const NodeSweep &nodeSweep() const { return _sweep; }
+  const NodeSweep &nodeSweep() const { return _m.sweep; }
   /// \brief Nodes step 6 integrates, over all ranks (0 without the sweep).
-  long sweepNodeCount() const { return _sweep_nodes; }
+  long sweepNodeCount() const { return _m.sweep_nodes; }
   /// \brief The common-plane contact, or null when the deck has no contact surfaces.
-  const ContactSystem *contact() const { return _contact.get(); }
+  const ContactSystem *contact() const { return _m.contact.get(); }
 
-  // Domain decomposition (issue 4); the defaults describe the serial run.
-  MPI_Comm comm() const { return _comm; }
-  int rank() const { return _rank; }
-  int numRanks() const { return _num_ranks; }
+  // Domain decomposition; the defaults describe the serial run.
+  MPI_Comm comm() const { return _m.comm; }
+  int rank() const { return _m.rank; }
+  int numRanks() const { return _m.num_ranks; }
   /// \brief The decomposition, or null on one rank.
-  const SolverDecomposition *decomposition() const { return _dd.get(); }
+  const DomainDecomposition *decomposition() const { return _m.dd.get(); }
   /// \brief Global id of a local node / mesh element (identity on one rank).
-  Index globalNode(Index local) const;
-  Index globalElement(Index mesh_element) const;
+  Index globalNode(Index local) const { return _m.globalNode(local); }
+  Index globalElement(Index mesh_element) const { return _m.globalElement(mesh_element); }
   /// \brief Nodes and elements of the whole model (summed over ranks).
-  long globalNodeCount() const;
-  long globalElementCount() const;
+  long globalNodeCount() const { return _m.globalNodeCount(); }
+  long globalElementCount() const { return _m.globalElementCount(); }
+  /// \brief What set-up built.
+  const Model &model() const { return _m; }
 
 private:
-  void setupMesh();
-  void setupFields();
-  void setupSets();
-  void setupBoundaryConditions();
-  void setupGauges();
+  void startCycles();
   void jointGaugeValues(std::vector<Real> &out) const;
-  void setupInitialState();
-  void setupContact();
-  void decompose();
-  void finishDecomposition();
-  void setupContactGhosts();
   void ensureNodeCapacity(Index count);
   void restrictGhosts();
-  void checkSetNotEmpty(std::size_t local_count, const std::string &message) const;
-  void unifyNodeSet(std::vector<Index> &nodes) const;
   void stepExchangeLoadPartials(); // 10b
   void collectiveCheck(const std::string &local_error) const;
-  Index meshElementOfDevice(Index device) const;
+  void checkEarlyNodes() const;
+  TimeStepControls timeStepControls() const { return {_m.deck.courant, _m.deck.dt_max}; }
+  Index meshElementOfDevice(Index device) const { return _m.meshElementOfDevice(device); }
 
   // the cycle's steps (numbers as in the paper)
   void stepSortIntoBins();             // 3
@@ -153,48 +134,17 @@ private:
   void stepFaceBoundaryConditions();   // 10
   void stepNodeBoundaryConditions();   // 11
   void stepUpdateNodes();              // 12
-  void setupNodeSweep();
-  void checkEarlyNodes() const;
-  TimeStepControls timeStepControls() const { return {_deck.courant, _deck.dt_max}; }
 
-  Deck _deck;
-  HostMesh _mesh;
-  std::vector<HostFace> _external_faces;
-  std::map<std::string, std::vector<Index>> _node_sets;
-  std::map<std::string, std::vector<HostFace>> _face_sets;
+  Model _m;
 
-  NodeFields _nodes;
-  ElementFields _elems;
-  NodeCorners _corners;
-  NodeSweep _sweep; ///< step 12 of the early nodes inside step 6 (numerics.node_update fused)
-  long _sweep_nodes = 0; ///< its nodes over all ranks
-  std::vector<ElementGroup> _groups;
-  DeviceView<MaterialParams *> _materials;
-  std::vector<MaterialParams> _materials_host;
-  BoundaryConditions _bc;
-  bool _external_loads = true; ///< hasExternalLoads(): steps 5 and 12 handle f_ext
   bool _forces_zeroed = false; ///< step 12 left f_int = 0 and f_ext = m g for step 5
-  ElementControls _controls;
-  std::vector<GaugeSlot> _gauges;
-  /// joint gauges: the CPs within `radius` [m] (0: half the largest contact face) of the node
-  /// nearest the gauge's point (device id on the rank that owns it, else -1)
-  struct JointGauge
-  {
-    Index anchor = -1;
-    Real radius = 0;
-  };
-  std::vector<JointGauge> _joint_gauges;
-  IndexView _gauge_id;       ///< device copies of the gauge slots
-  IndexView _gauge_code;     ///< quantity code, + 100 for element quantities
-  std::vector<int> _part_spec;                 ///< deck parts[] entry of every mesh part
-  std::vector<Index> _host_to_device_element;  ///< mesh element id -> device element id
-
+  bool _check_sweep = nodeSweepCheckEnabled(); ///< LateNodes.hpp's check mode
+  EarlyNodeSnapshot _early_snapshot;
+  ElementControls _controls; ///< this cycle's element controls
+  TimeStepLimits _limits;    ///< this cycle's limits on the next step, this rank
   Real _time = 0;
   Real _dt = 0;
   Real _dt_next = 0;
-  bool _check_sweep = nodeSweepCheckEnabled(); ///< LateNodes.hpp's check mode
-  EarlyNodeSnapshot _early_snapshot;
-  TimeStepLimits _limits; ///< this cycle's limits on the next step, this rank
   long _cycle = 0;
   Real _external_work = 0;
   Real _kinetic_mid = 0;     ///< 1/2 sum m v^n.v^{n+1} of the last step
@@ -202,12 +152,6 @@ private:
   Real _energy_scale = 0;    ///< largest |energy| seen, the balance error's reference
   NodeSums _last_sums;
   StepTimers _timers;
-  std::shared_ptr<ContactSystem> _contact; ///< shared_ptr: no complete type needed in ~Solver
-
-  MPI_Comm _comm = MPI_COMM_WORLD;
-  int _rank = 0, _num_ranks = 1;
-  std::shared_ptr<SolverDecomposition> _dd; ///< null on one rank
-  std::unique_ptr<HostMesh> _global_mesh;   ///< the whole mesh during set-up (decomposed runs)
   double _cycle_wall = 0;
 };
 

@@ -32,7 +32,7 @@ Real initialGroup(const ElementGroup &g, const NodeFields &nodes, const ElementF
         if constexpr (Axi)
           V = quad4RadialVolume(x);
         const MaterialParams &m = materials(mat_id(e));
-        const Real c = kmath::sqrt((m.bulk + 4.0 / 3.0 * m.shear) / m.density);
+        const Real c = kmath::sqrt(pWaveModulus(m.bulk, m.shear) / m.density);
         e_c(e) = c;
         e_volume(e) = V;
         const Real h = characteristicLength<T>(x, measure);

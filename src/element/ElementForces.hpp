@@ -6,6 +6,7 @@
 #include "core/Fields.hpp"
 #include "element/Hourglass.hpp"
 #include "element/Lanes.hpp"
+#include "material/MaterialParams.hpp"
 
 #include <vector>
 

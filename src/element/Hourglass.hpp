@@ -105,7 +105,7 @@ KOKKOS_FORCEINLINE_FUNCTION void hex8ModeSpread(const R m[4], R y[8])
 ///    Lh_ij = sum_a v_ai B_aj the velocity gradient the element step has already formed;
 ///  - forces: -sum_k gamma_ak Q_ik = -GQ_ai + sum_j B_aj H_ij, with GQ_ai = sum_k G_ak Q_ik
 ///    and H_ij = sum_k gx_jk Q_ik, so the B-term joins the stress divergence (elementForces()).
-/// gamma is never formed: of its three 8 x 4 x 3 products only 2 x 36 remain (change 19).
+/// gamma is never formed: of its three 8 x 4 x 3 products only 2 x 36 remain.
 /// Q (updated), the power returned and the modes as in hourglassForces(); G as
 /// hourglassBase<Hex8>. R: Real, or a lane pack of hexes (Lanes.hpp).
 template <class R>

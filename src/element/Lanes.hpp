@@ -27,7 +27,7 @@ namespace scpdyn
 #if defined(__GNUC__) && !defined(KOKKOS_ENABLE_CUDA) && !defined(KOKKOS_ENABLE_HIP) &&          \
     !defined(KOKKOS_ENABLE_SYCL) && !defined(KOKKOS_ENABLE_OPENMPTARGET)
 #if defined(__AVX512F__)
-constexpr int kElementLanes = 8; ///< AVX-512 (SCPDYN_NATIVE): 8 hexes a pack (perf/README #14)
+constexpr int kElementLanes = 8; ///< AVX-512 (SCPDYN_NATIVE): 8 hexes a pack (the cycle 12 % faster than packs of 4: perf/results/log.md)
 #elif defined(__AVX__)
 constexpr int kElementLanes = 4; ///< AVX2: 4 hexes a pack
 #else
@@ -43,7 +43,7 @@ constexpr int kElementLanes = 1;
 #ifdef SCPDYN_ELEMENT_LANES
 // laneCbrt: the cube root of the element step, the same arithmetic on one double or a pack.
 // Why not glibc's cbrt: it is a library call per lane (about 30 ns, ~8 % of the hex8 cycle:
-// perf/README.md), and it is not correctly rounded (3 ulp off at worst, off by one or more ulp
+// perf/results/log.md), and it is not correctly rounded (3 ulp off at worst, off by one or more ulp
 // for half of all arguments: tests/element/test_lane_cbrt.cpp). This one is vector arithmetic
 // only (~5 ns a value on AVX-512) and rounds correctly but for ~0.03 % of the arguments, which
 // are 1 ulp off:
@@ -229,7 +229,7 @@ inline void loadTriples(const Real *p, const Index n[kElementLanes], LanePack ou
   static_assert(kElementLanes == 8, "the AVX-512 transpose is for packs of 8");
   // One masked 256-bit load a lane (the mask keeps it inside the array), then an 8 x 3
   // transpose in registers. What GCC makes of lane inserts here is 48 vgatherqpd a pack,
-  // about 14 cycles each on this host (perf/README.md, change 15).
+  // about 14 cycles each on the AVX-512 host of perf/results/log.md.
   typedef Real Quad __attribute__((vector_size(4 * sizeof(Real))));
   Quad t[8];
   for (int l = 0; l < 8; ++l)

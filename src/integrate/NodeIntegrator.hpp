@@ -36,7 +36,7 @@ struct NodeSums
 
 /// \brief The views and step of step 12 (and of step 5 after it), for one node at a time.
 ///
-/// Drift-kick-drift leapfrog (scp-method.md 2.3): the element step used x^{n+1/2} =
+/// Drift-kick-drift leapfrog (docs/theory.md 2.3): the element step used x^{n+1/2} =
 /// x^n + dt/2 v^n; here v^{n+1} = v^n + dt F/M, velocity constraints imposed, and
 /// x^{n+1} = x^n + dt/2 (v^n + v^{n+1}), F = (f_int + f_contact) + f_ext, without
 /// f_contact unless Contact (a template choice, so the step without contact is compiled as

@@ -3,7 +3,7 @@
 /// \brief Step 12 inside step 6: the nodes that nothing after the element step touches are
 /// integrated in the element sweep, right after their last element, while their x, v and
 /// f_int are still in cache, which saves step 12 reading them again from memory
-/// (perf/README.md).
+/// (the whole cycle 0.89-0.94 of a separate step 12: perf/results/log.md).
 #include "element/ElementForces.hpp"
 #include "element/Lanes.hpp"
 #include "integrate/NodeIntegrator.hpp"

@@ -12,7 +12,7 @@ namespace scpdyn
 /// \brief True if the deck puts loads into f_ext: gravity, nodal forces or face pressure (the
 /// same on every rank). Without them f_ext keeps its initial zero, and steps 5 and 12 neither
 /// write nor read it, nor the impulse of a node without a velocity constraint: 128 of the ~316
-/// bytes a node moves in the two steps (perf/README.md, change 17).
+/// bytes a node moves in the two steps.
 bool hasExternalLoads(const BoundaryConditions &bc, const Real gravity[3]);
 
 /// \brief Step 5: f_int = 0, and f_ext = m g if `loads` (hasExternalLoads()).

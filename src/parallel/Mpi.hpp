@@ -158,6 +158,23 @@ inline void allReduceSumMin(Real *sums, int n, Real *mins, int m, MPI_Comm comm 
       mins[i] = std::min(mins[i], all[size_t(r) * size_t(w) + size_t(n + i)]);
 }
 
+/// \brief The message of the lowest rank whose `local` is not empty, on every rank (empty when
+/// no rank failed): the ranks of a run that cannot go on all stop with the same message.
+inline std::string firstErrorOfAnyRank(const std::string &local, MPI_Comm comm = MPI_COMM_WORLD)
+{
+  const int rank = mpiRank(comm), size = mpiSize(comm);
+  int first = local.empty() ? size : rank;
+  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == size)
+    return std::string();
+  int length = int(local.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  std::string message = local;
+  message.resize(size_t(length));
+  MPI_Bcast(&message[0], length, MPI_CHAR, first, comm);
+  return message;
+}
+
 /// \brief Element-wise global sum of `n` values in ascending rank order (allReduceSumMin()).
 inline void allReduceSum(Real *values, int n, MPI_Comm comm = MPI_COMM_WORLD)
 {

@@ -1,6 +1,8 @@
 // MPI helpers (src/parallel/Mpi.hpp) and the quiet-output set-up of the MPI test executable.
 #include "parallel/ParallelTestUtil.hpp"
 
+#include "integrate/TimeStep.hpp"
+
 #include <cmath>
 
 namespace scpdyn::test
@@ -71,6 +73,32 @@ TEST(Mpi, ReductionsAgreeOnEveryRank)
   EXPECT_EQ(hi, (std::array<Real, 3>{Real(size) + 1, 1.0, 0.5 + size - 1}));
   EXPECT_TRUE(allTrue(true));
   EXPECT_FALSE(allTrue(rank != size - 1)); // false on one rank only
+}
+
+TEST(Mpi, NextTimeStepReducesLimitsAndSumsInOneCollective)
+{
+  const int rank = mpiRank(), size = mpiSize();
+  TimeStepControls ctl;
+  ctl.courant = 0.5;
+  TimeStepLimits limits;
+  limits.element = 1e-6 * (2.0 + rank); // rank 0 has the smallest element step
+  limits.contact = rank == size - 1 ? 0.75e-6 : 1e300; // the last rank's contact limit
+  NodeSums sums;
+  sums.kinetic = 1.0 / (3.0 + rank);
+  sums.momentum[1] = rank;
+  const Real dt = nextTimeStep(limits, ctl, sums, MPI_COMM_WORLD);
+  EXPECT_EQ(dt, std::min(1e-6, 0.75e-6)); // 0.5 * 2e-6 on rank 0, or the contact's
+  Real ref = 0;
+  for (int r = 0; r < size; ++r)
+    ref += 1.0 / (3.0 + r);
+  EXPECT_EQ(bits(sums.kinetic), bits(ref)); // rank order, the same bits on every rank
+  EXPECT_EQ(sums.momentum[1], Real(size * (size - 1) / 2));
+  // the contacts' horizon: the elements' own step over all ranks
+  EXPECT_EQ(elementStep(limits, ctl, MPI_COMM_WORLD), 2e-6);
+  // the first error of any rank reaches every rank
+  const std::string e = firstErrorOfAnyRank(rank == size - 1 ? "last rank failed" : "");
+  EXPECT_EQ(e, "last rank failed");
+  EXPECT_EQ(firstErrorOfAnyRank(""), "");
 }
 
 } // namespace scpdyn::test

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Decomposition.hpp
-/// \brief What a decomposed Solver keeps about its piece of the mesh (issue 4): the maps to the
+/// \brief What a decomposed run keeps about its piece of the mesh: the maps to the
 /// global numbering, which nodes this rank owns (for sums and output), the shared-node sum
 /// plan of steps 7 and 10b, and the arrays step 10b needs. Null in the serial Solver.
 #include "core/Types.hpp"
@@ -14,7 +14,7 @@
 namespace scpdyn
 {
 
-struct SolverDecomposition
+struct DomainDecomposition
 {
   std::vector<Index> global_node;    ///< local node -> global node (ascending)
   std::vector<Index> global_element; ///< local mesh element -> global mesh element (ascending)

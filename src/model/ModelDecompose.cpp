@@ -1,0 +1,135 @@
+// Set-up of a decomposed run (docs/theory.md 2.1): the whole mesh is split, then each rank keeps
+// its own piece; node sets made consistent over the copies of a shared node. The numbering maps
+// of the Model (global ids of local nodes and elements).
+#include "model/ModelSetup.hpp"
+#include "core/HostCopy.hpp"
+
+#include "parallel/Decomposition.hpp"
+#include "parallel/LocalDomain.hpp"
+#include "parallel/Mpi.hpp"
+#include "parallel/Partitioner.hpp"
+
+#include <algorithm>
+
+namespace scpdyn
+{
+
+Index Model::globalNode(Index local) const
+{
+  return dd ? dd->global_node[size_t(local)] : local;
+}
+
+Index Model::globalElement(Index mesh_element) const
+{
+  return dd ? dd->global_element[size_t(mesh_element)] : mesh_element;
+}
+
+long Model::globalNodeCount() const { return dd ? dd->global_nodes : long(nodes.count); }
+
+long Model::globalElementCount() const { return dd ? dd->global_elements : long(elems.count); }
+
+Index Model::meshElementOfDevice(Index device) const
+{
+  for (size_t k = 0; k < host_to_device_element.size(); ++k)
+    if (host_to_device_element[k] == device)
+      return Index(k);
+  return device;
+}
+
+void ModelSetup::decompose()
+{
+  _m.dd = std::make_shared<DomainDecomposition>();
+  _m.global_mesh = std::make_unique<HostMesh>(std::move(_m.mesh));
+  const HostMesh &global = *_m.global_mesh;
+  // the serial set-up finds unused nodes as zero masses; a local mesh has none, so look here
+  {
+    std::vector<char> used(size_t(global.numNodes()), 0);
+    for (const HostPart &p : global.parts)
+      for (Index n : p.connectivity)
+        used[size_t(n)] = 1;
+    const auto it = std::find(used.begin(), used.end(), char(0));
+    if (it != used.end())
+      throw InputError(_m.deck.path + ": parts: node " + std::to_string(it - used.begin()) +
+                       " belongs to no element (zero mass)");
+  }
+  const std::vector<int> element_rank = partitionElementsOnRoot(global, _m.external_faces, _m.comm);
+  LocalDomain d = buildLocalDomain(global, element_rank, _m.rank);
+  _m.dd->halo = std::make_unique<NodeHalo>(d, _m.comm);
+  _m.dd->owned = ownedNodes(d);
+  _m.dd->shared_nodes = toDevice(d.shared.local, "shared_nodes");
+  _m.dd->global_nodes = long(global.numNodes());
+  _m.dd->global_elements = long(global.numElements());
+
+  // output cell order: the serial device order (grouped by type, ascending id within a type)
+  std::vector<long> before(5, 0); // elements of types < t
+  for (const HostPart &p : global.parts)
+    before[size_t(p.type) + 1] += p.numElements();
+  for (size_t t = 1; t < before.size(); ++t)
+    before[t] += before[t - 1];
+  std::vector<long> seen(4, 0);
+  std::vector<Index> serial_cell; // per local mesh element
+  Index g = 0;
+  size_t next = 0;
+  for (const HostPart &p : global.parts)
+    for (Index e = 0; e < p.numElements(); ++e, ++g)
+    {
+      const long cell = before[size_t(p.type)] + seen[size_t(p.type)]++;
+      if (next < d.global_element.size() && d.global_element[next] == g)
+      {
+        serial_cell.push_back(Index(cell));
+        ++next;
+      }
+    }
+  _m.dd->output_cell = std::move(serial_cell);
+
+  _m.external_faces = localFaces(_m.external_faces, d);
+  _m.dd->global_node = std::move(d.global_node);
+  _m.dd->global_element = std::move(d.global_element);
+  _m.mesh = std::move(d.mesh);
+}
+
+void ModelSetup::finishDecomposition()
+{
+  // output cells by device element instead of by mesh element
+  std::vector<Index> by_device(_m.dd->output_cell.size());
+  for (size_t e = 0; e < by_device.size(); ++e)
+    by_device[size_t(_m.host_to_device_element[e])] = _m.dd->output_cell[e];
+  _m.dd->output_cell = std::move(by_device);
+  _m.dd->owned_device = IndexView("owned_nodes", _m.dd->owned.size());
+  auto h = Kokkos::create_mirror_view(_m.dd->owned_device);
+  for (size_t n = 0; n < _m.dd->owned.size(); ++n)
+    h(n) = _m.dd->owned[n];
+  Kokkos::deep_copy(_m.dd->owned_device, h);
+  const size_t n = size_t(_m.nodes.count);
+  _m.dd->f_contact = VectorView("f_contact_partial", n);
+  _m.dd->f_load = VectorView("f_load_partial", n);
+}
+
+void ModelSetup::checkSetNotEmpty(std::size_t local_count, const std::string &message) const
+{
+  const long long total = _m.dd ? allReduceSum((long long)local_count, _m.comm) : (long long)local_count;
+  if (total == 0)
+    throw InputError(message);
+}
+
+void ModelSetup::unifyNodeSet(std::vector<Index> &nodes) const
+{
+  // A set built from the parts of local elements can miss a shared node on the rank whose
+  // elements there belong to other parts; a BC must act on every copy alike, so a shared node
+  // is in the set when it is on any rank.
+  if (!_m.dd)
+    return;
+  RealView flag("node_set_flag", size_t(_m.nodes.count));
+  auto h = Kokkos::create_mirror_view(flag);
+  for (Index n : nodes)
+    h(n) = 1;
+  Kokkos::deep_copy(flag, h);
+  _m.dd->halo->sum(flag);
+  Kokkos::deep_copy(h, flag);
+  nodes.clear();
+  for (Index n = 0; n < _m.nodes.count; ++n)
+    if (h(n) > 0)
+      nodes.push_back(n);
+}
+
+} // namespace scpdyn
