@@ -81,15 +81,18 @@ inline std::string boxDeck(int n, const std::string &scatter)
   return "title: bench box\n"
          "dimension: 3\n"
          "time: {end: 1.0, courant: 0.5}\n"
-         "numerics: {scatter: " + scatter + "}\n"
+         "numerics: {scatter: " +
+         scatter +
+         "}\n"
          "materials:\n"
          "  - {name: steel, model: elastic, density: 7850, youngs_modulus: 200.0e9, "
          "poisson_ratio: 0.3}\n"
          "parts:\n"
          "  - name: box\n"
          "    material: steel\n"
-         "    mesh: {type: block, element: hex8, elements: [" + cells + ", " + cells + ", " +
-         cells + "], size: [1, 1, 1]}\n"
+         "    mesh: {type: block, element: hex8, elements: [" +
+         cells + ", " + cells + ", " + cells +
+         "], size: [1, 1, 1]}\n"
          "    initial_velocity: [-10.0, 0.0, 0.0]\n"
          "node_sets:\n"
          "  - {name: wall, box: {min: [0, 0, 0], max: [0, 1, 1]}}\n"
@@ -136,8 +139,7 @@ inline KernelExtras makeKernelExtras(const Solver &s)
 {
   KernelExtras k;
   k.materials = s.materials();
-  k.corners = makeNodeCorners(s.elements(), s.groups(), s.nodes().count,
-                              ExecSpace().concurrency());
+  k.corners = makeNodeCorners(s.elements(), s.groups(), s.nodes().count, ExecSpace().concurrency());
   return k;
 }
 
@@ -177,20 +179,20 @@ inline void configure(benchmark::internal::Benchmark *b)
 } // namespace scpdyn_bench
 
 /// Kokkos reads OMP_NUM_THREADS at initialize: run one process per thread count.
-#define SCPDYN_BENCH_MAIN()                                                                    \
-  int main(int argc, char **argv)                                                              \
-  {                                                                                            \
-    Kokkos::initialize(argc, argv);                                                            \
-    int rc = 0;                                                                                \
-    {                                                                                          \
-      benchmark::Initialize(&argc, argv);                                                      \
-      if (benchmark::ReportUnrecognizedArguments(argc, argv))                                  \
-        rc = 1;                                                                                \
-      else                                                                                     \
-        benchmark::RunSpecifiedBenchmarks();                                                   \
-      benchmark::Shutdown();                                                                   \
-      scpdyn_bench::keepAlive().clear();                                                       \
-    }                                                                                          \
-    Kokkos::finalize();                                                                        \
-    return rc;                                                                                 \
+#define SCPDYN_BENCH_MAIN()                                                                        \
+  int main(int argc, char **argv)                                                                  \
+  {                                                                                                \
+    Kokkos::initialize(argc, argv);                                                                \
+    int rc = 0;                                                                                    \
+    {                                                                                              \
+      benchmark::Initialize(&argc, argv);                                                          \
+      if (benchmark::ReportUnrecognizedArguments(argc, argv))                                      \
+        rc = 1;                                                                                    \
+      else                                                                                         \
+        benchmark::RunSpecifiedBenchmarks();                                                       \
+      benchmark::Shutdown();                                                                       \
+      scpdyn_bench::keepAlive().clear();                                                           \
+    }                                                                                              \
+    Kokkos::finalize();                                                                            \
+    return rc;                                                                                     \
   }

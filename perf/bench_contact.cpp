@@ -77,7 +77,7 @@ JointedGrid makeGrid(int dim, int n)
 
   ContactFaceData &F = g.faces;
   F.count = num_faces;
-  F.nodes = DeviceView<Index * [kMaxFaceNodes]>("grid_face_nodes", size_t(num_faces));
+  F.nodes = DeviceView<Index *[kMaxFaceNodes]>("grid_face_nodes", size_t(num_faces));
   F.num_nodes = IndexView("grid_face_nn", size_t(num_faces));
   F.element = IndexView("grid_face_element", size_t(num_faces));
   F.surface = IndexView("grid_face_surface", size_t(num_faces));
@@ -150,8 +150,8 @@ void BM_Detection(benchmark::State &state)
   state.counters["faces_per_cpu_s"] = double(g.faces.count) * double(state.iterations()) / cpu;
   state.counters["faces"] = double(g.faces.count);
   state.counters["pairs"] = double(pairs);
-  state.counters["faces_per_s"] =
-      benchmark::Counter(double(g.faces.count) * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["faces_per_s"] = benchmark::Counter(
+      double(g.faces.count) * double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["threads"] = double(ExecSpace().concurrency());
 }
 
@@ -164,19 +164,21 @@ std::string wallDeck(int dim, int n, const std::string &option)
   return std::string("title: bench contact wall\n") + "dimension: " + std::to_string(dim) +
          "\ntime: {end: 1.0}\n"
          "materials:\n"
-         "  - {name: rock, model: elastic, density: 2600, youngs_modulus: 50.0e9, poisson_ratio: 0.25}\n"
+         "  - {name: rock, model: elastic, density: 2600, youngs_modulus: 50.0e9, poisson_ratio: "
+         "0.25}\n"
          "parts:\n"
          "  - name: wall\n"
          "    material: rock\n"
-         "    mesh: {type: brick_wall, element: " + (d3 ? "hex8" : "quad4") +
-         ", elements: " + (d3 ? "[1, 1, 1]" : "[1, 1]") + ", brick_size: " +
-         (d3 ? "[0.01, 0.01, 0.01]" : "[0.01, 0.01]") + ", count: " +
-         (d3 ? "[" + N + ", " + N + ", " + N + "]" : "[" + N + ", " + N + "]") +
+         "    mesh: {type: brick_wall, element: " +
+         (d3 ? "hex8" : "quad4") + ", elements: " + (d3 ? "[1, 1, 1]" : "[1, 1]") +
+         ", brick_size: " + (d3 ? "[0.01, 0.01, 0.01]" : "[0.01, 0.01]") +
+         ", count: " + (d3 ? "[" + N + ", " + N + ", " + N + "]" : "[" + N + ", " + N + "]") +
          ", stagger: 0.0}\n"
          "contact:\n"
          "  search_interval: 1000000000\n"
          "  surfaces:\n"
-         "    - {name: joints, part: \"wall*\", option: " + option + "}\n";
+         "    - {name: joints, part: \"wall*\", option: " +
+         option + "}\n";
 }
 
 struct WallCase
@@ -200,7 +202,8 @@ WallCase &wallCase(int dim, int n, const std::string &option)
   if (w)
     return *w;
   auto owned = std::make_shared<WallCase>();
-  owned->solver = std::make_shared<Solver>(parseDeckString(wallDeck(dim, n, option), "bench_wall.yaml"));
+  owned->solver =
+      std::make_shared<Solver>(parseDeckString(wallDeck(dim, n, option), "bench_wall.yaml"));
   const Solver &s = *owned->solver;
   owned->external = extractExternalFaces(s.mesh());
   for (Index e = 0; e < s.mesh().numElements(); ++e)
@@ -220,7 +223,8 @@ WallCase &wallCase(int dim, int n, const std::string &option)
   auto x = nodes.x, v = nodes.v;
   const Real c = 0.5 * 0.01 * n;
   Kokkos::parallel_for(
-      "bench_wall_velocity", Kokkos::RangePolicy<ExecSpace>(0, nodes.count), KOKKOS_LAMBDA(const Index k) {
+      "bench_wall_velocity", Kokkos::RangePolicy<ExecSpace>(0, nodes.count),
+      KOKKOS_LAMBDA(const Index k) {
         for (int d = 0; d < 3; ++d)
           v(k, d) = -1e-3 * (x(k, d) - c);
       });
@@ -260,8 +264,8 @@ void BM_CpUpdate(benchmark::State &state)
   state.counters["cpu_ns_per_cp_cycle"] = 1e9 * cpu / (cps * double(state.iterations()));
   state.SetLabel(option);
   state.counters["cps"] = cps;
-  state.counters["ns_per_cp_cycle"] =
-      benchmark::Counter(cps * double(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_cp_cycle"] = benchmark::Counter(
+      cps * double(state.iterations()), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["threads"] = double(ExecSpace().concurrency());
 }
 
@@ -284,8 +288,16 @@ void cpArgs(benchmark::internal::Benchmark *b)
   }
 }
 
-BENCHMARK(BM_Detection)->Apply(detectionArgs)->ArgNames({"dim", "faces"})->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_CpUpdate)->Apply(cpArgs)->ArgNames({"dim", "n", "option"})->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Detection)
+    ->Apply(detectionArgs)
+    ->ArgNames({"dim", "faces"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CpUpdate)
+    ->Apply(cpArgs)
+    ->ArgNames({"dim", "n", "option"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 
 } // namespace
 

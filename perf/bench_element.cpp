@@ -37,7 +37,8 @@ void BM_HexKernelAtomic(benchmark::State &state)
   for (auto _ : state)
   {
     const Real dt = computeElementForces(k.solver.groups(), ctl, k.solver.nodes(),
-                                         k.solver.elements(), k.extras.materials, k.extras.corners).dt;
+                                         k.solver.elements(), k.extras.materials, k.extras.corners)
+                        .dt;
     benchmark::DoNotOptimize(dt);
   }
   setCounters(state, k.solver.elements().count);
@@ -52,7 +53,8 @@ void BM_HexKernelCorners(benchmark::State &state)
   for (auto _ : state)
   {
     const Real dt = computeElementForces(k.solver.groups(), ctl, k.solver.nodes(),
-                                         k.solver.elements(), k.extras.materials, k.extras.corners).dt;
+                                         k.solver.elements(), k.extras.materials, k.extras.corners)
+                        .dt;
     benchmark::DoNotOptimize(dt);
   }
   setCounters(state, k.solver.elements().count);
@@ -78,7 +80,8 @@ void BM_HexKernelGather(benchmark::State &state)
   for (auto _ : state)
   {
     const Real dt = computeElementForces(k.solver.groups(), ctl, k.solver.nodes(),
-                                         k.solver.elements(), k.extras.materials, k.extras.corners).dt;
+                                         k.solver.elements(), k.extras.materials, k.extras.corners)
+                        .dt;
     gatherCornerForces(k.solver.nodes(), k.extras.corners);
     Kokkos::fence();
     benchmark::DoNotOptimize(dt);

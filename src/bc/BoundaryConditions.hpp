@@ -22,7 +22,7 @@ struct BoundaryConditions
   IndexView force_bc;
   std::vector<std::array<Real, 3>> force_value;
   std::vector<int> force_function;
-  DeviceView<Real * [3]> force_current;
+  DeviceView<Real *[3]> force_current;
 
   // pressure faces: nodes (up to 4), node count, BC index. In 1D the second node slot holds
   // the element's other node, which fixes the outward direction.

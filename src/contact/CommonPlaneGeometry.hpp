@@ -314,13 +314,13 @@ KOKKOS_INLINE_FUNCTION void pocWeights(const Real x[][3], int nn, const CpGeomet
   }
   else if (nn == 3)
   {
-    const Real A =
-        cp_geometry::cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], q[2][0] - q[0][0], q[2][1] - q[0][1]);
+    const Real A = cp_geometry::cross2(q[1][0] - q[0][0], q[1][1] - q[0][1], q[2][0] - q[0][0],
+                                       q[2][1] - q[0][1]);
     for (int i = 0; i < 3; ++i)
     {
       const int j = (i + 1) % 3, k = (i + 2) % 3;
       w[i] = A != 0 ? cp_geometry::cross2(q[j][0] - pp[0], q[j][1] - pp[1], q[k][0] - pp[0],
-                                     q[k][1] - pp[1]) /
+                                          q[k][1] - pp[1]) /
                           A
                     : 1.0 / 3.0;
     }

@@ -136,20 +136,20 @@ KOKKOS_INLINE_FUNCTION JointParams averageParams(const JointParams &p1_in, const
 /// (`F = Fn*n + Fs`); face 1 receives `-F`.
 struct CpState
 {
-  Real u = 0;                ///< normal closure, > 0 closed/overlapped [m]
-  Real umax = 0;             ///< largest closure so far [m]
-  Real Fn = 0;               ///< normal force, > 0 compression [N]
-  Real Fs[3] = {0, 0, 0};    ///< shear force on face 2 [N]
-  Real usp = 0;              ///< accumulated plastic slip / a [-]
-  Real us[3] = {0, 0, 0};    ///< accumulated shear displacement (diagnostic) [m]
-  Real n_old[3] = {0, 0, 1}; ///< CP normal of the previous cycle
-  Real u_z = 0;              ///< zero-force closure while open (D10, D11) [m]
-  Real Ac_old = 0;           ///< contact area of the previous active cycle [m^2]
-  int open = 0;              ///< 1: joint open (no force until u > u_z)
-  int failed = 0;            ///< sleepy option: 1 after the failure switch (irreversible)
-  Real sigma_t_scale = 1;    ///< 0 after first opening with brittle_tension (6.5)
+  Real u = 0;                  ///< normal closure, > 0 closed/overlapped [m]
+  Real umax = 0;               ///< largest closure so far [m]
+  Real Fn = 0;                 ///< normal force, > 0 compression [N]
+  Real Fs[3] = {0, 0, 0};      ///< shear force on face 2 [N]
+  Real usp = 0;                ///< accumulated plastic slip / a [-]
+  Real us[3] = {0, 0, 0};      ///< accumulated shear displacement (diagnostic) [m]
+  Real n_old[3] = {0, 0, 1};   ///< CP normal of the previous cycle
+  Real u_z = 0;                ///< zero-force closure while open (D10, D11) [m]
+  Real Ac_old = 0;             ///< contact area of the previous active cycle [m^2]
+  int open = 0;                ///< 1: joint open (no force until u > u_z)
+  int failed = 0;              ///< sleepy option: 1 after the failure switch (irreversible)
+  Real sigma_t_scale = 1;      ///< 0 after first opening with brittle_tension (6.5)
   Real V_model[3] = {0, 0, 0}; ///< implicit option: end-of-step V1 - V2 its model predicted [m/s]
-  Real dt_model = 0;         ///< implicit option: the step of that prediction (0: none) [s]
+  Real dt_model = 0;           ///< implicit option: the step of that prediction (0: none) [s]
 };
 
 /// \brief History of a new CP (section 12 and D12): u = u0 from (D7), umax = max(u0, 0); a gap

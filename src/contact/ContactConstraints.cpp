@@ -21,17 +21,17 @@ namespace
 
 enum TieMode : int
 {
-  TieNone = 0,   ///< not constrained this cycle
-  TieFull = 1,   ///< sticky: V1 = V2 at the end of the step (25)
-  TieNormal = 2  ///< slide line in compression: (V1 - V2).n = gap/dt (D14)
+  TieNone = 0,  ///< not constrained this cycle
+  TieFull = 1,  ///< sticky: V1 = V2 at the end of the step (25)
+  TieNormal = 2 ///< slide line in compression: (V1 - V2).n = gap/dt (D14)
 };
 
 /// dt sum w^2/M over the nodes of CP p, per component d whose velocity is free (the diagonal
 /// of the tie operator); for a normal tie, the same along n.
 KOKKOS_INLINE_FUNCTION void tieDiagonal(const ContactFaceData &F, const CommonPlaneData &cp,
                                         Index p, const RealView &mass,
-                                        const DeviceView<int * [3]> &bc, Real dt, int dim,
-                                        Real D[3], Real &Dn)
+                                        const DeviceView<int *[3]> &bc, Real dt, int dim, Real D[3],
+                                        Real &Dn)
 {
   D[0] = D[1] = D[2] = Dn = 0;
   for (int side = 0; side < 2; ++side)
@@ -74,8 +74,9 @@ KOKKOS_INLINE_FUNCTION void precondition(const CommonPlaneData &cp, Index p, int
                                          const Real D[3], Real Dn, const Real r[3], Real z[3])
 {
   for (int d = 0; d < 3; ++d)
-    z[d] = mode == TieFull ? (D[d] > 0 ? r[d] / D[d] : 0.0)
-                           : mode == TieNormal && Dn > 0 ? r[d] / Dn : 0.0;
+    z[d] = mode == TieFull               ? (D[d] > 0 ? r[d] / D[d] : 0.0)
+           : mode == TieNormal && Dn > 0 ? r[d] / Dn
+                                         : 0.0;
   (void)cp;
   (void)p;
 }
@@ -271,10 +272,10 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         const Real gap = cp.state(p).u < 0 ? -cp.state(p).u : 0.0;
         const Real excess = Vn - gap / dt;
         const bool active = cp.status(p) != CpInactive;
-        mode(p) = !active                                ? TieNone
-                  : o == ContactOption::Sticky           ? TieFull
+        mode(p) = !active                                       ? TieNone
+                  : o == ContactOption::Sticky                  ? TieFull
                   : o == ContactOption::SlideLine && excess > 0 ? TieNormal
-                                                         : TieNone;
+                                                                : TieNone;
         for (int d = 0; d < 3; ++d)
           B(p, d) = o == ContactOption::Sticky ? V1[d] - V2[d] : excess * cp.normal(p, d);
       });

@@ -15,23 +15,23 @@ namespace scpdyn
 struct ContactFaceData
 {
   Index count = 0;
-  DeviceView<Index * [kMaxFaceNodes]> nodes; ///< outward-ordered nodes, -1 padded
+  DeviceView<Index *[kMaxFaceNodes]> nodes; ///< outward-ordered nodes, -1 padded
   IndexView num_nodes;
-  IndexView element;        ///< device element id of the element behind the face
-  IndexView surface;        ///< contact surface (face-BC id) of the face
-  RealView mass;            ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
-  IndexView rigid;          ///< 1 when every node of the face has all velocity components prescribed
+  IndexView element; ///< device element id of the element behind the face
+  IndexView surface; ///< contact surface (face-BC id) of the face
+  RealView mass;     ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
+  IndexView rigid;   ///< 1 when every node of the face has all velocity components prescribed
   DeviceView<JointParams *> params; ///< per surface, resolved SI parameters
-  IndexView nodes_used;     ///< the distinct nodes of all contact faces, ascending
+  IndexView nodes_used;             ///< the distinct nodes of all contact faces, ascending
   /// 1D only: the other node of the element behind the (point) face, which orients the face
   /// normal (4.1 in 1D); -1 in 2D and 3D
   IndexView back;
   // Decomposed runs: the faces of this rank and its ghost faces (faces of other
   // ranks near its own, ascending key among them); a ghost face's element is -2 - its global
   // element id, its nodes may be ghost nodes (numbered after the local nodes).
-  DeviceView<long *> key;   ///< global face key (3.5)
-  IndexView ghost;          ///< 1 for a ghost face: no force is applied to its nodes here
-  RealView density;         ///< ghost faces: density of the element behind [kg/m^3] (19)
+  DeviceView<long *> key; ///< global face key (3.5)
+  IndexView ghost;        ///< 1 for a ghost face: no force is applied to its nodes here
+  RealView density;       ///< ghost faces: density of the element behind [kg/m^3] (19)
 };
 
 /// \brief Allocates the per-face Views of `F` for `n` faces and sets `F.count`; `params` and
@@ -39,7 +39,7 @@ struct ContactFaceData
 inline void allocateFaces(ContactFaceData &F, size_t n)
 {
   F.count = Index(n);
-  F.nodes = DeviceView<Index * [kMaxFaceNodes]>("contact_face_nodes", n);
+  F.nodes = DeviceView<Index *[kMaxFaceNodes]>("contact_face_nodes", n);
   F.num_nodes = IndexView("contact_face_num_nodes", n);
   F.element = IndexView("contact_face_element", n);
   F.surface = IndexView("contact_face_surface", n);
@@ -55,7 +55,7 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
 /// densities arrive later), and their copy to the device.
 struct ContactFaceHost
 {
-  DeviceView<Index * [kMaxFaceNodes]>::HostMirror nodes;
+  DeviceView<Index *[kMaxFaceNodes]>::HostMirror nodes;
   IndexView::HostMirror num_nodes, element, surface, rigid, back, ghost;
   RealView::HostMirror mass;
   DeviceView<long *>::HostMirror key;
@@ -64,10 +64,9 @@ struct ContactFaceHost
       : nodes(Kokkos::create_mirror_view(F.nodes)),
         num_nodes(Kokkos::create_mirror_view(F.num_nodes)),
         element(Kokkos::create_mirror_view(F.element)),
-        surface(Kokkos::create_mirror_view(F.surface)),
-        rigid(Kokkos::create_mirror_view(F.rigid)), back(Kokkos::create_mirror_view(F.back)),
-        ghost(Kokkos::create_mirror_view(F.ghost)), mass(Kokkos::create_mirror_view(F.mass)),
-        key(Kokkos::create_mirror_view(F.key))
+        surface(Kokkos::create_mirror_view(F.surface)), rigid(Kokkos::create_mirror_view(F.rigid)),
+        back(Kokkos::create_mirror_view(F.back)), ghost(Kokkos::create_mirror_view(F.ghost)),
+        mass(Kokkos::create_mirror_view(F.mass)), key(Kokkos::create_mirror_view(F.key))
   {
   }
   void copyTo(const ContactFaceData &F) const
@@ -87,10 +86,10 @@ struct ContactFaceHost
 /// \brief Host description of a contact face, for messages and outputs.
 struct ContactFaceInfo
 {
-  long key = 0;          ///< global face key
+  long key = 0; ///< global face key
   Index mesh_element = -1;
   int local_face = -1;
-  int part = -1;         ///< mesh part index
+  int part = -1; ///< mesh part index
 };
 
 /// \brief The live common planes. `face1 < face2` (face indices), sorted by (face1, face2), so a
@@ -99,19 +98,19 @@ struct CommonPlaneData
 {
   Index count = 0;
   IndexView face1, face2;
-  DeviceView<long *> key1, key2; ///< global keys of the faces: the CP's identity across searches
-  DeviceView<CpState *> state;   ///< history (section 12)
+  DeviceView<long *> key1, key2;    ///< global keys of the faces: the CP's identity across searches
+  DeviceView<CpState *> state;      ///< history (section 12)
   DeviceView<JointParams *> params; ///< averaged parameters of the two faces (3.6)
   // per cycle
-  VectorView normal;             ///< CP normal n, face 1 -> face 2
-  VectorView poc;                ///< point of contact x_poc [m]
-  VectorView force;              ///< total CP force on face 2 [N]
-  RealView area;                 ///< contact area Ac [m^2]
-  RealView face_area1, face_area2; ///< A1, A2 of the faces [m^2]
-  RealView mstar;                ///< reduced mass m* [kg]
-  RealView stored;               ///< stored elastic energy Psi [J]
-  DeviceView<Real * [kMaxFaceNodes]> w1, w2; ///< nodal weights of the force on face 1, 2
-  IndexView status;              ///< CpStatus
+  VectorView normal;                        ///< CP normal n, face 1 -> face 2
+  VectorView poc;                           ///< point of contact x_poc [m]
+  VectorView force;                         ///< total CP force on face 2 [N]
+  RealView area;                            ///< contact area Ac [m^2]
+  RealView face_area1, face_area2;          ///< A1, A2 of the faces [m^2]
+  RealView mstar;                           ///< reduced mass m* [kg]
+  RealView stored;                          ///< stored elastic energy Psi [J]
+  DeviceView<Real *[kMaxFaceNodes]> w1, w2; ///< nodal weights of the force on face 1, 2
+  IndexView status;                         ///< CpStatus
 };
 
 /// \brief Per-CP status written to the outputs.

@@ -66,9 +66,9 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
       KOKKOS_LAMBDA(const Index p, Index &first) {
         const JointParams &P = cp.params(p);
         const Real F[3] = {cp.force(p, 0), cp.force(p, 1), cp.force(p, 2)};
-        const int c = checkCp(P, cp.state(p), F, !isConstraint(P.option),
-                              cp.status(p) != CpInactive, cp.area(p), cp.face_area1(p),
-                              cp.face_area2(p));
+        const int c =
+            checkCp(P, cp.state(p), F, !isConstraint(P.option), cp.status(p) != CpInactive,
+                    cp.area(p), cp.face_area1(p), cp.face_area2(p));
         if (c != CpCheckOk && p < first)
           first = p;
       },
@@ -121,8 +121,8 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   const Real jw_peak = std::max(_joint_work_peak, jw);
   const Real stored_peak = std::max(_stored_peak, sums[2]);
   const Real jw_gross = _joint_work_gross + sums[1];
-  const bool created = bad >= cp.count && sums[3] > 0 &&
-                       contactCreatedEnergy(jw, jw_peak, stored_peak, jw_gross);
+  const bool created =
+      bad >= cp.count && sums[3] > 0 && contactCreatedEnergy(jw, jw_peak, stored_peak, jw_gross);
   if (created)
   { // name the CP that gave the mesh the most energy this cycle
     Kokkos::MinLoc<Real, Index>::value_type least;

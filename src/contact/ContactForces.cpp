@@ -88,14 +88,15 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
           return;
         }
         cp.area(p) = g.Ac;
-        const Real mstar = reducedMass(g.f1, F.mass(f1), F.rigid(f1) != 0, g.f2, F.mass(f2),
-                                       F.rigid(f2) != 0);
+        const Real mstar =
+            reducedMass(g.f1, F.mass(f1), F.rigid(f1) != 0, g.f2, F.mass(f2), F.rigid(f2) != 0);
         cp.mstar(p) = mstar;
         // A velocity constraint ties faces that touch to round-off, where node penetrations
         // are noise: its force (and its face velocities) always use the shape functions at
         // the POC (8.2); otherwise the weights flip between nodes and drive the relative
         // zigzag mode of the two faces, which the face-average constraint cannot see.
-        const DistributionRule rule = isConstraint(P.option) ? DistributionRule::Poc : P.distribution;
+        const DistributionRule rule =
+            isConstraint(P.option) ? DistributionRule::Poc : P.distribution;
         // blend length of the penetration weights (8.1, CommonPlaneGeometry.hpp): the relative
         // displacement the last force gives the reduced mass in one step from rest
         const Real F_old = kmath::sqrt(s.Fn * s.Fn + contact_math::dot(s.Fs, s.Fs));
@@ -213,8 +214,8 @@ Real ContactSystem::stableTimeStep(const NodeFields &nodes, const ElementFields 
         cpVelocities(F, cp, p, P.velocity, v, V1, V2);
         for (int d = 0; d < 3; ++d)
           Vn += (V1[d] - V2[d]) * cp.normal(p, d);
-        const Real mu = arealReducedMass(F.mass(f1), cp.face_area1(p), F.rigid(f1) != 0,
-                                         F.mass(f2), cp.face_area2(p), F.rigid(f2) != 0);
+        const Real mu = arealReducedMass(F.mass(f1), cp.face_area1(p), F.rigid(f1) != 0, F.mass(f2),
+                                         cp.face_area2(p), F.rigid(f2) != 0);
         const Index e1 = F.element(f1), e2 = F.element(f2);
         // a ghost face's element is on another rank, which sent its density (step 8)
         const Real rho1 = e1 >= 0 ? emass(e1) / volume(e1) : F.density(f1);

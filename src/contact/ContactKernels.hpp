@@ -23,8 +23,7 @@ KOKKOS_INLINE_FUNCTION void faceVelocity(const ContactFaceData &F, Index f, cons
 
 KOKKOS_INLINE_FUNCTION bool isConstraint(ContactOption o)
 {
-  return o == ContactOption::SlideLine || o == ContactOption::Sticky ||
-         o == ContactOption::Sleepy;
+  return o == ContactOption::SlideLine || o == ContactOption::Sticky || o == ContactOption::Sleepy;
 }
 
 /// Velocity of face `side` (0: face 1, 1: face 2) of CP p: the nodal velocities weighted like
@@ -65,7 +64,7 @@ KOKKOS_INLINE_FUNCTION void cpVelocities(const ContactFaceData &F, const CommonP
 KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonPlaneData &cp,
                                          Index p, const Real Fv[3], const VectorView &fc,
                                          const VectorView &dv, const RealView &mass,
-                                         const DeviceView<int * [3]> &bc, Real dt, int dim)
+                                         const DeviceView<int *[3]> &bc, Real dt, int dim)
 {
   for (int side = 0; side < 2; ++side)
   {

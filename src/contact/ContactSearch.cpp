@@ -342,7 +342,7 @@ void sortFacesIntoBins(const FaceGeometryData &G, Index nf, int dim, Real bin_si
   bins.faces = IndexView("contact_bin_faces", size_t(nf));
   auto c = G.centroid, nrm = G.normal;
   auto bin_of = bins.bin_of;
-  bins.packed = DeviceView<Real * [8]>("contact_bin_packed", size_t(nf));
+  bins.packed = DeviceView<Real *[8]>("contact_bin_packed", size_t(nf));
   const Real l0 = bins.lo[0], l1 = bins.lo[1], l2 = bins.lo[2];
   const int n0 = bins.dims[0], n1 = bins.dims[1], n2 = bins.dims[2];
   const Index ncells = nbins / kNormalClasses;
@@ -360,7 +360,8 @@ void sortFacesIntoBins(const FaceGeometryData &G, Index nf, int dim, Real bin_si
   auto offsets = bins.offsets;
   auto faces = bins.faces;
   Kokkos::parallel_for(
-      "scpdyn::contact::binFill", Kokkos::RangePolicy<ExecSpace>(0, nf), KOKKOS_LAMBDA(const Index f) {
+      "scpdyn::contact::binFill", Kokkos::RangePolicy<ExecSpace>(0, nf),
+      KOKKOS_LAMBDA(const Index f) {
         const Index b = bin_of(f);
         faces(offsets(b) + Kokkos::atomic_fetch_add(&cursor(b), 1)) = f;
       });
@@ -368,7 +369,8 @@ void sortFacesIntoBins(const FaceGeometryData &G, Index nf, int dim, Real bin_si
   auto packed = bins.packed;
   auto Gd = G;
   Kokkos::parallel_for(
-      "scpdyn::contact::binPack", Kokkos::RangePolicy<ExecSpace>(0, nf), KOKKOS_LAMBDA(const Index q) {
+      "scpdyn::contact::binPack", Kokkos::RangePolicy<ExecSpace>(0, nf),
+      KOKKOS_LAMBDA(const Index q) {
         const Index f = faces(q);
         for (int d = 0; d < 3; ++d)
           packed(q, d) = Gd.centroid(f, d), packed(q, 3 + d) = Gd.normal(f, d);
@@ -419,7 +421,8 @@ CandidatePairs findCandidatePairs(const ContactFaceData &F, const FaceGeometryDa
   P.face1 = IndexView("contact_pair_face1", size_t(P.count));
   auto first = P.face1;
   Kokkos::parallel_for(
-      "scpdyn::contact::pairFirst", Kokkos::RangePolicy<ExecSpace>(0, nf), KOKKOS_LAMBDA(const Index i) {
+      "scpdyn::contact::pairFirst", Kokkos::RangePolicy<ExecSpace>(0, nf),
+      KOKKOS_LAMBDA(const Index i) {
         for (Index q = row_offsets(i); q < row_offsets(i + 1); ++q)
           first(q) = i;
       });

@@ -45,7 +45,7 @@ struct FaceBins
   IndexView bin_of;  ///< row of every face
   /// centroid, normal, radius, area of faces(q), in row order: the inner search loop streams
   /// them instead of gathering four arrays at random face ids
-  DeviceView<Real * [8]> packed;
+  DeviceView<Real *[8]> packed;
 };
 
 /// \brief Candidate face pairs (face1 < face2), sorted by (face1, face2).

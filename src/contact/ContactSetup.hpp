@@ -27,8 +27,8 @@ struct ContactMeshInput
   const std::vector<HostFace> *external_faces = nullptr; ///< extractExternalFaces()
   const std::map<std::string, std::vector<HostFace>> *face_sets = nullptr;
   const std::vector<Index> *host_to_device_element = nullptr;
-  NodeFields nodes;     ///< mass and velocity-BC flags are read
-  ElementFields elems;  ///< element masses are read
+  NodeFields nodes;    ///< mass and velocity-BC flags are read
+  ElementFields elems; ///< element masses are read
   /// Decomposed runs: global id of every mesh element (face keys are global), and the global
   /// sum of a count (a surface must select faces on some rank, not on every one).
   const std::vector<Index> *global_element = nullptr;

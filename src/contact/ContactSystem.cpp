@@ -53,8 +53,8 @@ CommonPlaneData allocatePlanes(Index n)
   c.face_area2 = RealView("cp_face_area2", m);
   c.mstar = RealView("cp_mstar", m);
   c.stored = RealView("cp_stored", m);
-  c.w1 = DeviceView<Real * [kMaxFaceNodes]>("cp_w1", m);
-  c.w2 = DeviceView<Real * [kMaxFaceNodes]>("cp_w2", m);
+  c.w1 = DeviceView<Real *[kMaxFaceNodes]>("cp_w1", m);
+  c.w2 = DeviceView<Real *[kMaxFaceNodes]>("cp_w2", m);
   c.status = IndexView("cp_status", m);
   return c;
 }
@@ -119,8 +119,7 @@ void ContactSystem::sortIntoBins(const NodeFields &nodes, Real dt, long cycle)
 void ContactSystem::detect(const NodeFields &nodes, Real dt)
 {
   const Real gap = _search_gap > 0 ? _search_gap : _geom.h_max;
-  const CandidatePairs P =
-      findCandidatePairs(_faces, _geom, _bins, nodes, dt, _dim, _axisym, gap);
+  const CandidatePairs P = findCandidatePairs(_faces, _geom, _bins, nodes, dt, _dim, _axisym, gap);
   const CommonPlaneData old = _cp;
   CommonPlaneData cp = allocatePlanes(P.count);
   const ContactFaceData F = _faces;
@@ -334,7 +333,8 @@ ContactPointsHost ContactSystem::points() const
     const bool active = status(p) != CpInactive;
     h.area.push_back(active ? area(p) : 0.0);
     h.normal_force.push_back(active ? s.Fn : 0.0);
-    h.shear_force.push_back(active ? std::sqrt(s.Fs[0] * s.Fs[0] + s.Fs[1] * s.Fs[1] + s.Fs[2] * s.Fs[2]) : 0.0);
+    h.shear_force.push_back(
+        active ? std::sqrt(s.Fs[0] * s.Fs[0] + s.Fs[1] * s.Fs[1] + s.Fs[2] * s.Fs[2]) : 0.0);
     h.closure.push_back(s.u);
     h.slip.push_back(s.usp * params(p).a);
     h.state.push_back(status(p));

@@ -139,9 +139,9 @@ private:
   Real _search_gap = -1;
   ContactFaceData _faces;
   std::vector<ContactFaceInfo> _info;
-  ContactFaceData _own;                ///< this rank's faces (= _faces without ghosts)
+  ContactFaceData _own; ///< this rank's faces (= _faces without ghosts)
   std::vector<ContactFaceInfo> _own_info;
-  std::vector<Index> _ghost_of_face;   ///< per face: its index among the ghosts, or -1
+  std::vector<Index> _ghost_of_face; ///< per face: its index among the ghosts, or -1
   ContactComm _comm;
   std::vector<std::string> _part_names;
   CommonPlaneData _cp;
@@ -151,14 +151,15 @@ private:
   bool _has_constraints = false, _has_explicit = false;
   bool _has_sticky = false, _has_slide = false;
   VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
-  IndexView _tie_mode;   ///< per CP: which velocity constraint it imposes this cycle
+  IndexView _tie_mode; ///< per CP: which velocity constraint it imposes this cycle
 
-  VectorView _vstar;     ///< v* of 10.6 (contact nodes; other entries unused)
-  VectorView _dv;        ///< velocity increments of one constraint pass
-  VectorView _fc;        ///< contact force of this cycle (contact nodes) [N]
-  VectorView _impulse;   ///< last cycle's contact impulse fc dt (contact nodes) [N s]
-  DeviceView<CpState *> _state_before; ///< CP histories at the start of step 9 (restored on failure)
-  Real _work = 0;        ///< contact energy [J]
+  VectorView _vstar;   ///< v* of 10.6 (contact nodes; other entries unused)
+  VectorView _dv;      ///< velocity increments of one constraint pass
+  VectorView _fc;      ///< contact force of this cycle (contact nodes) [N]
+  VectorView _impulse; ///< last cycle's contact impulse fc dt (contact nodes) [N s]
+  DeviceView<CpState *>
+      _state_before; ///< CP histories at the start of step 9 (restored on failure)
+  Real _work = 0;    ///< contact energy [J]
   // energy-creation check (ContactFinish.cpp): the joint CPs' net work, its peak, the sum of
   // its |increments|, the peak stored energy, and the step of the last cycle
   RealView _cp_work;

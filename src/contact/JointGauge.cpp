@@ -37,7 +37,8 @@ JointGaugeSums jointGaugeSums(const CommonPlaneData &cp, const ContactFaceData &
         const Real A = area(c);
         s.area += A;
         s.normal_force += st.Fn;
-        s.shear_force += kmath::sqrt(st.Fs[0] * st.Fs[0] + st.Fs[1] * st.Fs[1] + st.Fs[2] * st.Fs[2]);
+        s.shear_force +=
+            kmath::sqrt(st.Fs[0] * st.Fs[0] + st.Fs[1] * st.Fs[1] + st.Fs[2] * st.Fs[2]);
         s.closure_area += st.u * A;
         s.slip_area += slip * A;
       },

@@ -5,7 +5,6 @@
 /// driver forms the joint's stresses and mean closure and slip.
 #include "contact/ContactData.hpp"
 
-
 namespace scpdyn
 {
 
@@ -59,6 +58,9 @@ namespace Kokkos
 template <>
 struct reduction_identity<scpdyn::JointGaugeSums>
 {
-  KOKKOS_FORCEINLINE_FUNCTION static scpdyn::JointGaugeSums sum() { return scpdyn::JointGaugeSums(); }
+  KOKKOS_FORCEINLINE_FUNCTION static scpdyn::JointGaugeSums sum()
+  {
+    return scpdyn::JointGaugeSums();
+  }
 };
 } // namespace Kokkos

@@ -11,22 +11,22 @@ namespace scpdyn
 /// face loads. Step 12 integrates their sum.
 struct NodeFields
 {
-  VectorView x0;    ///< initial coordinates [m]
-  VectorView x;     ///< coordinates at the start of the cycle, x^n [m]
-  VectorView v;     ///< velocity v^n [m/s]
-  VectorView f_int; ///< internal + hourglass forces [N]
-  VectorView f_contact; ///< contact forces of step 9 [N] (empty without contact surfaces)
-  VectorView f_ext; ///< external forces [N]
+  VectorView x0;               ///< initial coordinates [m]
+  VectorView x;                ///< coordinates at the start of the cycle, x^n [m]
+  VectorView v;                ///< velocity v^n [m/s]
+  VectorView f_int;            ///< internal + hourglass forces [N]
+  VectorView f_contact;        ///< contact forces of step 9 [N] (empty without contact surfaces)
+  VectorView f_ext;            ///< external forces [N]
   VectorView external_impulse; ///< last step's (f_ext + constraint reaction) dt [N s]
-  RealView mass;    ///< lumped mass [kg] (per metre in plane strain, per radian axisymmetric)
-  DeviceView<int * [3]> bc; ///< per component: index of the velocity BC value, or -1
+  RealView mass; ///< lumped mass [kg] (per metre in plane strain, per radian axisymmetric)
+  DeviceView<int *[3]> bc; ///< per component: index of the velocity BC value, or -1
   Index count = 0;
 };
 
 /// \brief Element fields (every element type; connectivity padded with -1).
 struct ElementFields
 {
-  ConnView conn;        ///< element x kMaxElementNodes
+  ConnView conn; ///< element x kMaxElementNodes
   IndexView part;
   IndexView material;
   RealView mass;        ///< constant element mass [kg]
@@ -34,8 +34,8 @@ struct ElementFields
   SymTensorView stress; ///< Cauchy stress without viscosity [Pa]
   RealView energy;      ///< specific internal energy [J/kg]
   RealView plastic_strain;
-  RealView q;           ///< artificial viscosity pressure [Pa]
-  RealView sound_speed; ///< last sound speed [m/s]
+  RealView q;                ///< artificial viscosity pressure [Pa]
+  RealView sound_speed;      ///< last sound speed [m/s]
   RealView hourglass_energy; ///< accumulated hourglass work [J]
   HistoryView history;
   HourglassView hourglass; ///< stiffness-form resistances
@@ -64,7 +64,7 @@ struct NodeCorners
   IndexView offsets;      ///< shared nodes + 1: their corners' slots, in ascending order
   IndexView corners;
   DeviceView<std::uint8_t *> shared_corners; ///< per element: bit a set if node a is shared
-  IndexView corner_base;  ///< per element: the slot of its first shared corner (the rest follow)
+  IndexView corner_base;   ///< per element: the slot of its first shared corner (the rest follow)
   VectorView corner_force; ///< per shared corner (slot) [N]
 };
 

@@ -12,6 +12,9 @@ namespace scalar_ops
 KOKKOS_INLINE_FUNCTION Real abs(Real x) { return x < 0 ? -x : x; }
 KOKKOS_INLINE_FUNCTION Real min(Real x, Real y) { return x < y ? x : y; }
 KOKKOS_INLINE_FUNCTION Real max(Real x, Real y) { return x > y ? x : y; }
-KOKKOS_INLINE_FUNCTION Real clamp(Real x, Real lo, Real hi) { return x < lo ? lo : x > hi ? hi : x; }
+KOKKOS_INLINE_FUNCTION Real clamp(Real x, Real lo, Real hi)
+{
+  return x < lo ? lo : x > hi ? hi : x;
+}
 } // namespace scalar_ops
 } // namespace scpdyn

@@ -71,7 +71,8 @@ public:
     Kokkos::fence();
     if (_region)
       Kokkos::Profiling::popRegion();
-    _timers.add(_name, std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count());
+    _timers.add(_name,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count());
   }
   ScopedStep(const ScopedStep &) = delete;
   ScopedStep &operator=(const ScopedStep &) = delete;

@@ -31,10 +31,10 @@ using DeviceView = Kokkos::View<T, Layout, MemSpace>;
 
 using RealView = DeviceView<Real *>;
 using IndexView = DeviceView<Index *>;
-using VectorView = DeviceView<Real * [3]>;     ///< one 3-vector per node/face/CP
-using ConnView = DeviceView<Index **>;         ///< connectivity: entity x local node
+using VectorView = DeviceView<Real *[3]>; ///< one 3-vector per node/face/CP
+using ConnView = DeviceView<Index **>;    ///< connectivity: entity x local node
 using AtomicVectorView =
-    Kokkos::View<Real * [3], Layout, MemSpace, Kokkos::MemoryTraits<Kokkos::Atomic>>;
+    Kokkos::View<Real *[3], Layout, MemSpace, Kokkos::MemoryTraits<Kokkos::Atomic>>;
 
 constexpr int kMaxElementNodes = 8; ///< hex8
 constexpr int kMaxFaceNodes = 4;    ///< quad face of a hex
@@ -46,9 +46,9 @@ constexpr int kHourglassSize = 12;  ///< per-element hourglass resistances (4 mo
 /// with one vector load and store (and a GPU warp coalesces it).
 template <class T>
 using ElementComponentView = Kokkos::View<T, Kokkos::LayoutLeft, MemSpace>;
-using SymTensorView = ElementComponentView<Real * [6]>; ///< Voigt xx yy zz xy yz zx
-using HistoryView = ElementComponentView<Real * [kHistorySize]>;
-using HourglassView = ElementComponentView<Real * [kHourglassSize]>;
+using SymTensorView = ElementComponentView<Real *[6]>; ///< Voigt xx yy zz xy yz zx
+using HistoryView = ElementComponentView<Real *[kHistorySize]>;
+using HourglassView = ElementComponentView<Real *[kHourglassSize]>;
 
 /// \brief Element types; the problem dimension follows from the type.
 enum class ElementType : int

@@ -35,8 +35,9 @@ void Solver::ensureNodeCapacity(Index count)
     grow(_m.nodes.f_contact);
   grow(_m.nodes.bc);
   RealView mass(std::string(_m.nodes.mass.label()), n);
-  Kokkos::deep_copy(Kokkos::subview(mass, std::make_pair(size_t(0), size_t(_m.nodes.mass.extent(0)))),
-                    _m.nodes.mass);
+  Kokkos::deep_copy(
+      Kokkos::subview(mass, std::make_pair(size_t(0), size_t(_m.nodes.mass.extent(0)))),
+      _m.nodes.mass);
   _m.nodes.mass = mass;
 }
 
@@ -49,14 +50,14 @@ void Solver::stepExchangeFaceConnectivity()
   // and size (twice the largest node distance from it, with the 1D element's other node)
   const std::vector<GhostFaceDesc> &own = _m.dd->own_faces;
   const Index nf = Index(own.size());
-  DeviceView<Index * [5]> nodes("ghost_face_nodes", size_t(nf));
+  DeviceView<Index *[5]> nodes("ghost_face_nodes", size_t(nf));
   auto h_nodes = Kokkos::create_mirror_view(nodes);
   for (Index f = 0; f < nf; ++f)
     for (int a = 0; a < 5; ++a)
       h_nodes(f, a) = a < 4 ? (a < own[size_t(f)].num_nodes ? own[size_t(f)].nodes[a] : -1)
                             : own[size_t(f)].back;
   Kokkos::deep_copy(nodes, h_nodes);
-  DeviceView<Real * [4]> geo("ghost_face_centroid", size_t(nf));
+  DeviceView<Real *[4]> geo("ghost_face_centroid", size_t(nf));
   auto x = _m.nodes.x, v = _m.nodes.v;
   const Real h = 0.5 * _dt;
   Kokkos::parallel_for(
@@ -124,7 +125,8 @@ void Solver::stepExchangeFaceConnectivity()
     Kokkos::deep_copy(Kokkos::subview(_m.nodes.mass, range), m);
     Kokkos::deep_copy(Kokkos::subview(_m.nodes.bc, range, Kokkos::ALL), b);
   }
-  _m.contact->setGhostFaces(_m.dd->ghosts->faces(), Index(_m.nodes.x.extent(0)), _m.dd->shared_host);
+  _m.contact->setGhostFaces(_m.dd->ghosts->faces(), Index(_m.nodes.x.extent(0)),
+                            _m.dd->shared_host);
 }
 
 void Solver::restrictGhosts()

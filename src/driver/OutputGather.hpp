@@ -31,13 +31,14 @@ private:
   struct Plan
   {
     long global = 0;
-    std::vector<long> local_rows;   ///< local entry -> global row (-1: not sent)
+    std::vector<long> local_rows;    ///< local entry -> global row (-1: not sent)
     std::vector<int> counts, displs; ///< rank 0: entries per rank
     std::vector<long> rows;          ///< rank 0: global row of each gathered entry
   };
   void build(Plan &p, std::vector<long> local_rows, long global);
   template <class T>
-  std::vector<T> gather(const Plan &p, const std::vector<T> &local, int ncomp, MPI_Datatype type) const;
+  std::vector<T> gather(const Plan &p, const std::vector<T> &local, int ncomp,
+                        MPI_Datatype type) const;
 
   MPI_Comm _comm;
   int _rank = 0, _size = 1;

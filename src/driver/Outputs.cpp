@@ -48,8 +48,8 @@ ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
   for (int r = 1; r < size; ++r)
     displs[size_t(r)] = displs[size_t(r - 1)] + counts[size_t(r - 1)];
   std::vector<double> all(rank == 0 ? size_t(displs.back() + counts.back()) : 0);
-  MPI_Gatherv(rows.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-              MPI_DOUBLE, 0, comm);
+  MPI_Gatherv(rows.data(), count, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
+              0, comm);
   ContactPointsHost out;
   const size_t total = all.size() / size_t(width);
   std::vector<size_t> order(total);
@@ -59,9 +59,9 @@ ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return key(a, 0) < key(b, 0) || (key(a, 0) == key(b, 0) && key(a, 1) < key(b, 1));
   });
-  std::vector<std::vector<double> *> out_fields = {&out.area,  &out.normal_force, &out.shear_force,
-                                                   &out.closure, &out.slip,       &out.state,
-                                                   &out.key1,  &out.key2};
+  std::vector<std::vector<double> *> out_fields = {
+      &out.area, &out.normal_force, &out.shear_force, &out.closure,
+      &out.slip, &out.state,        &out.key1,        &out.key2};
   for (size_t p : order)
   {
     const double *r = &all[p * size_t(width)];
@@ -139,7 +139,7 @@ void Outputs::begin()
         desc.connectivity.push_back(rows[c * kMaxElementNodes + size_t(a)]);
   }
   _fields = dd ? std::make_unique<FieldWriter>(_dir, desc, dist)
-              : std::make_unique<FieldWriter>(_dir, desc);
+               : std::make_unique<FieldWriter>(_dir, desc);
   if (!root())
   {
     writeFrame();
@@ -210,7 +210,8 @@ void Outputs::writeFrame()
   for (const auto &m : _solver.materialParams())
     names.push_back(historyNames(m));
   std::map<std::string, std::vector<double>> named;
-  if (_solver.decomposition()) // the fields every rank writes: those of the materials used on any rank
+  if (_solver
+          .decomposition()) // the fields every rank writes: those of the materials used on any rank
     for (size_t m = 0; m < names.size(); ++m)
       for (const auto &n : names[m])
         if (_material_used[m] && !n.empty())
@@ -227,8 +228,11 @@ void Outputs::writeFrame()
       }
   }
   f.cell_tensors6.push_back({"stress", s6});
-  f.cell_scalars = {{"pressure", p}, {"density", rho}, {"specific_internal_energy", e},
-                    {"plastic_strain", ep}, {"part", pt}};
+  f.cell_scalars = {{"pressure", p},
+                    {"density", rho},
+                    {"specific_internal_energy", e},
+                    {"plastic_strain", ep},
+                    {"part", pt}};
   for (auto &kv : named)
     f.cell_scalars.push_back({kv.first, std::move(kv.second)});
   if (_fields)
@@ -249,10 +253,14 @@ void Outputs::writeContactFrame()
   f.time = _solver.time();
   f.cycle = _solver.cycles();
   f.points = c.poc;
-  f.scalars = {{"area", c.area},           {"normal_force", c.normal_force},
-               {"shear_force", c.shear_force}, {"closure", c.closure},
-               {"slip", c.slip},           {"state", c.state},
-               {"face1_key", c.key1},      {"face2_key", c.key2}};
+  f.scalars = {{"area", c.area},
+               {"normal_force", c.normal_force},
+               {"shear_force", c.shear_force},
+               {"closure", c.closure},
+               {"slip", c.slip},
+               {"state", c.state},
+               {"face1_key", c.key1},
+               {"face2_key", c.key2}};
   if (_contacts)
     _contacts->write(f);
 }
@@ -294,7 +302,8 @@ void Outputs::afterCycle()
       _next_history += deck.history_interval;
   }
   const auto now = std::chrono::steady_clock::now();
-  if (root() && std::chrono::duration<double>(now - _last_progress).count() >= deck.progress_interval)
+  if (root() &&
+      std::chrono::duration<double>(now - _last_progress).count() >= deck.progress_interval)
   {
     _last_progress = now;
     const double wall = std::chrono::duration<double>(now - _start).count();
@@ -341,16 +350,25 @@ void Outputs::finish(const std::string &error)
     const double cycles = std::max(1.0, double(_solver.cycles()));
     const double halo = double(dd->halo->bytesSent() - dd->halo_bytes_setup);
     const double ghost = dd->ghosts ? double(dd->ghosts->bytesGathered()) : 0.0;
-    const double values[] = {double(_solver.elements().count), double(_solver.nodes().count),
+    const double values[] = {double(_solver.elements().count),
+                             double(_solver.nodes().count),
                              double(dd->halo->numSharedNodes()),
                              double(dd->halo->numNeighbours()),
                              dd->ghosts ? double(dd->ghosts->faces().size()) : 0.0,
                              dd->ghosts ? double(dd->ghosts->numGhostNodes()) : 0.0,
-                             halo / cycles, ghost / cycles, double(dd->rebuild_bytes) / cycles,
+                             halo / cycles,
+                             ghost / cycles,
+                             double(dd->rebuild_bytes) / cycles,
                              (halo + ghost + double(dd->rebuild_bytes)) / cycles};
-    const char *names[] = {"elements", "nodes", "shared_nodes", "neighbours", "ghost_faces",
-                           "ghost_nodes", "bytes_shared_node_sums_per_cycle",
-                           "bytes_ghost_copies_per_cycle", "bytes_ghost_rebuilds_per_cycle",
+    const char *names[] = {"elements",
+                           "nodes",
+                           "shared_nodes",
+                           "neighbours",
+                           "ghost_faces",
+                           "ghost_nodes",
+                           "bytes_shared_node_sums_per_cycle",
+                           "bytes_ghost_copies_per_cycle",
+                           "bytes_ghost_rebuilds_per_cycle",
                            "bytes_per_cycle"};
     const int n = int(sizeof values / sizeof values[0]);
     std::vector<double> v_lo(values, values + n), v_hi = v_lo, v_mean = v_lo;
@@ -360,7 +378,9 @@ void Outputs::finish(const std::string &error)
     for (int k = 0; k < n; ++k)
     {
       JsonObject st;
-      st.add("min", v_lo[size_t(k)]).add("mean", v_mean[size_t(k)] / ranks).add("max", v_hi[size_t(k)]);
+      st.add("min", v_lo[size_t(k)])
+          .add("mean", v_mean[size_t(k)] / ranks)
+          .add("max", v_hi[size_t(k)]);
       decomposition.add(names[k], st);
     }
   }

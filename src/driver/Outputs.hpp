@@ -39,7 +39,7 @@ private:
   std::unique_ptr<FieldWriter> _fields;
   std::unique_ptr<PointSetWriter> _contacts; ///< contacts.xmf/h5, with contact surfaces only
   bool _has_contacts = false;
-  std::vector<int> _material_used;           ///< per material: used by an element on any rank
+  std::vector<int> _material_used; ///< per material: used by an element on any rank
   std::unique_ptr<CsvWriter> _history, _gauges;
   double _next_field = 0, _next_history = 0;
   long _last_frame_cycle = -1, _last_row_cycle = -1;

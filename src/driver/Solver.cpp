@@ -13,10 +13,7 @@
 namespace scpdyn
 {
 
-Solver::Solver(const Deck &deck, MPI_Comm comm) : _m(deck, comm)
-{
-  startCycles();
-}
+Solver::Solver(const Deck &deck, MPI_Comm comm) : _m(deck, comm) { startCycles(); }
 
 Solver::~Solver() = default;
 
@@ -94,12 +91,13 @@ void Solver::stepElementSolvers()
   _controls = elementControls();
   if (_m.sweep.active) // step 12 of the early nodes, in this step's sweep
   {
-    _m.sweep.node = nodeIntegrator(_m.nodes, _m.bc.velocity_current, _dt,
-                                 _m.dd ? _m.dd->owned_device : IndexView(), _m.deck.gravity.data());
+    _m.sweep.node =
+        nodeIntegrator(_m.nodes, _m.bc.velocity_current, _dt,
+                       _m.dd ? _m.dd->owned_device : IndexView(), _m.deck.gravity.data());
     _m.sweep.loads = _m.external_loads;
   }
-  const ElementStepResult r =
-      computeElementForces(_m.groups, _controls, _m.nodes, _m.elems, _m.materials, _m.corners, _m.sweep);
+  const ElementStepResult r = computeElementForces(_m.groups, _controls, _m.nodes, _m.elems,
+                                                   _m.materials, _m.corners, _m.sweep);
   if (_controls.gather)
     gatherCornerForces(_m.nodes, _m.corners);
   std::string error;
@@ -149,7 +147,7 @@ void Solver::stepUpdateNodes()
   _limits.contact = 1e300;
   if (_m.contact && _m.contact->hasExplicit()) // (19), from v^{n+1}
     _limits.contact = _m.contact->stableTimeStep(_m.nodes, _m.elems,
-                                               elementStep(_limits, timeStepControls(), comm));
+                                                 elementStep(_limits, timeStepControls(), comm));
   _dt_next = nextTimeStep(_limits, timeStepControls(), _last_sums, comm);
   _external_work += _last_sums.external_work;
   _kinetic_mid = _last_sums.kinetic_mid;
@@ -181,8 +179,7 @@ long Solver::run(const std::string &output_dir)
   out.begin();
   try
   {
-    while (_time < _m.deck.end_time &&
-           (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles))
+    while (_time < _m.deck.end_time && (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles))
     {
       cycle();
       out.afterCycle();

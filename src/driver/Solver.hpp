@@ -82,7 +82,10 @@ public:
   /// \brief The materials as the element step reads them (device copy of materialParams()).
   const DeviceView<MaterialParams *> &materials() const { return _m.materials; }
   /// \brief Device element id of a mesh element id (parts numbered in deck order).
-  Index deviceElement(Index mesh_element) const { return _m.host_to_device_element[size_t(mesh_element)]; }
+  Index deviceElement(Index mesh_element) const
+  {
+    return _m.host_to_device_element[size_t(mesh_element)];
+  }
   /// \brief Current energies and momentum of the whole model (reduces over elements and
   /// ranks; not free).
   EnergyReport energies() const;
@@ -147,9 +150,9 @@ private:
   Real _dt_next = 0;
   long _cycle = 0;
   Real _external_work = 0;
-  Real _kinetic_mid = 0;     ///< 1/2 sum m v^n.v^{n+1} of the last step
+  Real _kinetic_mid = 0; ///< 1/2 sum m v^n.v^{n+1} of the last step
   Real _initial_energy = 0;
-  Real _energy_scale = 0;    ///< largest |energy| seen, the balance error's reference
+  Real _energy_scale = 0; ///< largest |energy| seen, the balance error's reference
   NodeSums _last_sums;
   StepTimers _timers;
   double _cycle_wall = 0;

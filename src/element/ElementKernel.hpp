@@ -296,8 +296,8 @@ struct ElementKernel
     {
       // the elastic update on the pack: updateMaterial's own stages (MetalUpdate.hpp)
       const MaterialParams &mp = materials(m0);
-      const P c2 = elasticLinearUpdate(mp, k.D, ctl.dt, k.rho_old, k.rho_new, k.q_mean,
-                                       s.stress, s.energy);
+      const P c2 =
+          elasticLinearUpdate(mp, k.D, ctl.dt, k.rho_old, k.rho_new, k.q_mean, s.stress, s.energy);
       c = LaneOps<P>::sqrt(LaneOps<P>::max(c2, LaneOps<P>::broadcast(soundSpeedSquaredFloor(mp))));
     }
     else // one lane at a time (it reads the history slots directly)

@@ -38,8 +38,8 @@ KOKKOS_INLINE_FUNCTION Real line2Gradients(const Real x[2][3], Real B[2][3])
 /// \brief Quad4 (counter-clockwise): returns the area; B in the x-y plane.
 KOKKOS_INLINE_FUNCTION Real quad4Gradients(const Real x[4][3], Real B[4][3])
 {
-  const Real A = 0.5 * ((x[2][0] - x[0][0]) * (x[3][1] - x[1][1]) -
-                        (x[3][0] - x[1][0]) * (x[2][1] - x[0][1]));
+  const Real A =
+      0.5 * ((x[2][0] - x[0][0]) * (x[3][1] - x[1][1]) - (x[3][0] - x[1][0]) * (x[2][1] - x[0][1]));
   const Real s = 0.5 / A;
   B[0][0] = s * (x[1][1] - x[3][1]);
   B[1][0] = s * (x[2][1] - x[0][1]);

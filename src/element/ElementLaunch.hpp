@@ -109,13 +109,17 @@ Real launchAny(const ElementGroup &g, const ElementControls &ctl, Scatter s,
   switch (g.type)
   {
   case ElementType::Line2:
-    return launchGroup<ElementType::Line2, false>(g, ctl, s, nodes, el, materials, corners, after, gi);
+    return launchGroup<ElementType::Line2, false>(g, ctl, s, nodes, el, materials, corners, after,
+                                                  gi);
   case ElementType::Quad4:
-    return launchGroup<ElementType::Quad4, Axi>(g, ctl, s, nodes, el, materials, corners, after, gi);
+    return launchGroup<ElementType::Quad4, Axi>(g, ctl, s, nodes, el, materials, corners, after,
+                                                gi);
   case ElementType::Hex8:
-    return launchGroup<ElementType::Hex8, false>(g, ctl, s, nodes, el, materials, corners, after, gi);
+    return launchGroup<ElementType::Hex8, false>(g, ctl, s, nodes, el, materials, corners, after,
+                                                 gi);
   case ElementType::Tet4:
-    return launchGroup<ElementType::Tet4, false>(g, ctl, s, nodes, el, materials, corners, after, gi);
+    return launchGroup<ElementType::Tet4, false>(g, ctl, s, nodes, el, materials, corners, after,
+                                                 gi);
   }
   return 0;
 }
@@ -151,10 +155,11 @@ ElementStepResult computeElementForcesWith(const std::vector<ElementGroup> &grou
   for (size_t gi = 0; gi < groups.size(); ++gi)
   {
     const ElementGroup &g = groups[gi];
-    const Real d =
-        ctl.geometry == Geometry2D::Axisymmetric
-            ? element_launch::launchAny<true>(g, ctl, s, nodes, elems, materials, corners, after, int(gi))
-            : element_launch::launchAny<false>(g, ctl, s, nodes, elems, materials, corners, after, int(gi));
+    const Real d = ctl.geometry == Geometry2D::Axisymmetric
+                       ? element_launch::launchAny<true>(g, ctl, s, nodes, elems, materials,
+                                                         corners, after, int(gi))
+                       : element_launch::launchAny<false>(g, ctl, s, nodes, elems, materials,
+                                                          corners, after, int(gi));
     dt_min = d < dt_min ? d : dt_min;
   }
   return element_launch::stepResult(dt_min);

@@ -43,12 +43,12 @@ struct ElementKinematicsOf
 {
   R B[ElementTraits<T>::nodes][3];
   R measure, V, length;
-  R cube_root_V;   ///< hex8: V^(1/3), the viscosity length and (squared) the hourglass scale
-  R Lh[3][3];      ///< velocity gradient on x^{n+1/2}, sum_a v_a B_a [1/s]
-  R D[6];          ///< rate of deformation on the midpoint configuration [1/s]
+  R cube_root_V; ///< hex8: V^(1/3), the viscosity length and (squared) the hourglass scale
+  R Lh[3][3];    ///< velocity gradient on x^{n+1/2}, sum_a v_a B_a [1/s]
+  R D[6];        ///< rate of deformation on the midpoint configuration [1/s]
   R rho_old, rho_new;
-  R q_new;         ///< this step's viscosity pressure [Pa]
-  R q_mean;        ///< 1/2 (q^{n-1/2} + q^{n+1/2}), for the material's heating [Pa]
+  R q_new;  ///< this step's viscosity pressure [Pa]
+  R q_mean; ///< 1/2 (q^{n-1/2} + q^{n+1/2}), for the material's heating [Pa]
 };
 
 /// \brief Velocity gradient on the midpoint configuration x^n from the one on x^{n+1/2}.
@@ -171,14 +171,16 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
         lq = k.cube_root_V;
       else
         lq = D == 1 ? k.measure : D == 2 ? Ops::sqrt(k.measure) : Ops::cbrt(k.measure);
-      k.q_new = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
+      k.q_new =
+          k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
     }
   }
   else // lanes (hex8): the same expression in every lane, kept where compressed, 0 elsewhere
   {
     static_assert(T == ElementType::Hex8, "lane packs are hex8");
     const R lq = k.cube_root_V;
-    const R q = k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
+    const R q =
+        k.rho_new * lq * (ctl.q_quadratic * lq * trD * trD - ctl.q_linear * s.sound_speed * trD);
     k.q_new = trD < 0 ? q : zero;
   }
   // the viscous heating is booked with the step's mean q, as the kinetic energy sees the mean
@@ -189,8 +191,8 @@ KOKKOS_INLINE_FUNCTION void elementRates(const R v[][3], const ElementControls &
   {
     const R w[3] = {0.5 * (L[2][1] - L[1][2]), 0.5 * (L[0][2] - L[2][0]),
                     0.5 * (L[1][0] - L[0][1])};
-    rotateElementState<HourglassModes<T>::count>(w, ctl.dt, ctl.hourglass == HourglassType::Stiffness,
-                                                 s.stress, s.hourglass);
+    rotateElementState<HourglassModes<T>::count>(
+        w, ctl.dt, ctl.hourglass == HourglassType::Stiffness, s.stress, s.hourglass);
   }
 }
 
@@ -215,7 +217,8 @@ KOKKOS_INLINE_FUNCTION MaterialStep materialStep(const ElementKinematicsOf<T, R>
 /// \brief Phase 3, after the material update gave the sound speed c: stress-divergence and
 /// hourglass forces, the new state's volume, q and c, and the stable time step.
 template <ElementType T, bool Axi, class R>
-KOKKOS_INLINE_FUNCTION void elementForces(const R x[][3], const R v[][3], const ElementControls &ctl,
+KOKKOS_INLINE_FUNCTION void elementForces(const R x[][3], const R v[][3],
+                                          const ElementControls &ctl,
                                           const ElementKinematicsOf<T, R> &k, const R &c,
                                           ElementStateOf<R> &s, ElementResultOf<R> &r)
 {
@@ -232,16 +235,17 @@ KOKKOS_INLINE_FUNCTION void elementForces(const R x[][3], const R v[][3], const 
     // the hourglass force's B-term joins the stress divergence: f_a = -(V sig - H) B_a - GQ_a
     const R Vs = k.cube_root_V * k.cube_root_V; // hourglassAreaScale(), one cube root a step
     R GQ[8][3], H[3][3];
-    r.hourglass_power = hex8HourglassResistances<R>(x, v, k.B, k.Lh, k.V, Vs, k.rho_new, c,
-                                                    ctl.hourglass, ctl.hourglass_coefficient,
-                                                    ctl.dt, s.hourglass, GQ, H);
+    r.hourglass_power =
+        hex8HourglassResistances<R>(x, v, k.B, k.Lh, k.V, Vs, k.rho_new, c, ctl.hourglass,
+                                    ctl.hourglass_coefficient, ctl.dt, s.hourglass, GQ, H);
     R P[3][3];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         P[i][j] = k.V * sig[i][j] - H[i][j];
     for (int a = 0; a < 8; ++a)
       for (int i = 0; i < 3; ++i)
-        r.force[a][i] = -(P[i][0] * k.B[a][0] + P[i][1] * k.B[a][1] + P[i][2] * k.B[a][2]) - GQ[a][i];
+        r.force[a][i] =
+            -(P[i][0] * k.B[a][0] + P[i][1] * k.B[a][1] + P[i][2] * k.B[a][2]) - GQ[a][i];
   }
   else
   {
@@ -259,8 +263,9 @@ KOKKOS_INLINE_FUNCTION void elementForces(const R x[][3], const R v[][3], const 
         r.force[a][0] -= sig[2][2] * k.measure / N;
     }
     // Vs = V: the quad's hourglassAreaScale() in 2D; tets and lines have no hourglass modes
-    r.hourglass_power = hourglassForces<T, R>(x, v, k.B, k.V, k.V, k.rho_new, c, ctl.hourglass,
-                                              ctl.hourglass_coefficient, ctl.dt, s.hourglass, r.force);
+    r.hourglass_power =
+        hourglassForces<T, R>(x, v, k.B, k.V, k.V, k.rho_new, c, ctl.hourglass,
+                              ctl.hourglass_coefficient, ctl.dt, s.hourglass, r.force);
   }
   r.q = q_new;
   s.q = q_new;

@@ -69,8 +69,8 @@ KOKKOS_INLINE_FUNCTION R hourglassAreaScale(const R &V)
 /// 18 additions instead of 28. R: Real or a lane pack.
 template <class R>
 KOKKOS_FORCEINLINE_FUNCTION void hex8ModeSums(const R &y0, const R &y1, const R &y2, const R &y3,
-                                             const R &y4, const R &y5, const R &y6, const R &y7,
-                                             R m[4])
+                                              const R &y4, const R &y5, const R &y6, const R &y7,
+                                              R m[4])
 {
   // pairs along xi (same eta, zeta): differences (xi-odd) and sums (xi-even)
   const R d0 = y1 - y0, d1 = y2 - y3, d2 = y5 - y4, d3 = y6 - y7;
@@ -109,12 +109,11 @@ KOKKOS_FORCEINLINE_FUNCTION void hex8ModeSpread(const R m[4], R y[8])
 /// Q (updated), the power returned and the modes as in hourglassForces(); G as
 /// hourglassBase<Hex8>. R: Real, or a lane pack of hexes (Lanes.hpp).
 template <class R>
-KOKKOS_INLINE_FUNCTION R hex8HourglassResistances(const R x[8][3], const R v[8][3],
-                                                  const R B[8][3], const R Lh[3][3],
-                                                  LaneArg<R> V, LaneArg<R> Vs, LaneArg<R> rho,
-                                                  LaneArg<R> c, HourglassType type, Real kappa,
-                                                  Real dt, R Q[kHourglassSize], R GQ[8][3],
-                                                  R H[3][3])
+KOKKOS_INLINE_FUNCTION R hex8HourglassResistances(const R x[8][3], const R v[8][3], const R B[8][3],
+                                                  const R Lh[3][3], LaneArg<R> V, LaneArg<R> Vs,
+                                                  LaneArg<R> rho, LaneArg<R> c, HourglassType type,
+                                                  Real kappa, Real dt, R Q[kHourglassSize],
+                                                  R GQ[8][3], R H[3][3])
 {
   const R zero = LaneOps<R>::broadcast(0);
   R gx[3][4], gv[3][4];
@@ -157,7 +156,8 @@ KOKKOS_INLINE_FUNCTION R hex8HourglassResistances(const R x[8][3], const R v[8][
   }
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      H[i][j] = gx[j][0] * Qn[i][0] + gx[j][1] * Qn[i][1] + gx[j][2] * Qn[i][2] + gx[j][3] * Qn[i][3];
+      H[i][j] =
+          gx[j][0] * Qn[i][0] + gx[j][1] * Qn[i][1] + gx[j][2] * Qn[i][2] + gx[j][3] * Qn[i][3];
   for (int i = 0; i < 3; ++i)
   {
     R spread[8];
@@ -173,13 +173,14 @@ KOKKOS_INLINE_FUNCTION R hex8HourglassResistances(const R x[8][3], const R v[8][
 template <class R>
 KOKKOS_INLINE_FUNCTION R hex8HourglassForces(const R x[8][3], const R v[8][3], const R B[8][3],
                                              LaneArg<R> V, LaneArg<R> Vs, LaneArg<R> rho,
-                                             LaneArg<R> c, HourglassType type, Real kappa,
-                                             Real dt, R Q[kHourglassSize], R f[8][3])
+                                             LaneArg<R> c, HourglassType type, Real kappa, Real dt,
+                                             R Q[kHourglassSize], R f[8][3])
 {
   R Lh[3][3];
   velocityGradient<8, 3>(v, B, Lh);
   R GQ[8][3], H[3][3];
-  const R power = hex8HourglassResistances<R>(x, v, B, Lh, V, Vs, rho, c, type, kappa, dt, Q, GQ, H);
+  const R power =
+      hex8HourglassResistances<R>(x, v, B, Lh, V, Vs, rho, c, type, kappa, dt, Q, GQ, H);
   for (int a = 0; a < 8; ++a)
     for (int i = 0; i < 3; ++i)
       f[a][i] += (B[a][0] * H[i][0] + B[a][1] * H[i][1] + B[a][2] * H[i][2]) - GQ[a][i];
@@ -193,8 +194,8 @@ KOKKOS_INLINE_FUNCTION R hex8HourglassForces(const R x[8][3], const R v[8][3], c
 /// form's hourglassAreaScale(V). R: Real, or a lane pack for the hex8 (Lanes.hpp).
 template <ElementType T, class R>
 KOKKOS_INLINE_FUNCTION R hourglassForces(const R x[][3], const R v[][3], const R B[][3],
-                                         LaneArg<R> V, LaneArg<R> Vs, LaneArg<R> rho,
-                                         LaneArg<R> c, HourglassType type, Real kappa, Real dt,
+                                         LaneArg<R> V, LaneArg<R> Vs, LaneArg<R> rho, LaneArg<R> c,
+                                         HourglassType type, Real kappa, Real dt,
                                          R Q[kHourglassSize], R f[][3])
 {
   constexpr int N = ElementTraits<T>::nodes;

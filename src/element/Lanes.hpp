@@ -24,10 +24,11 @@
 namespace scpdyn
 {
 
-#if defined(__GNUC__) && !defined(KOKKOS_ENABLE_CUDA) && !defined(KOKKOS_ENABLE_HIP) &&          \
+#if defined(__GNUC__) && !defined(KOKKOS_ENABLE_CUDA) && !defined(KOKKOS_ENABLE_HIP) &&            \
     !defined(KOKKOS_ENABLE_SYCL) && !defined(KOKKOS_ENABLE_OPENMPTARGET)
 #if defined(__AVX512F__)
-constexpr int kElementLanes = 8; ///< AVX-512 (SCPDYN_NATIVE): 8 hexes a pack (the cycle 12 % faster than packs of 4: perf/results/log.md)
+constexpr int kElementLanes =
+    8; ///< AVX-512 (SCPDYN_NATIVE): 8 hexes a pack (the cycle 12 % faster than packs of 4: perf/results/log.md)
 #elif defined(__AVX__)
 constexpr int kElementLanes = 4; ///< AVX2: 4 hexes a pack
 #else
@@ -333,21 +334,21 @@ inline void addRowTriples(Real *p, Index base, const LanePack minus[3], const La
   const LanePack &X = minus[0], &Y = minus[1], &Z = minus[2];
   const LanePack &U = plus[0], &V = plus[1], &W = plus[2];
   // the minus corners interleaved: x0 y0 z0 x1 y1 z1 x2 y2 | z2 x3 ... x5 | y5 z5 ... z7
-  const LanePack m0 = __builtin_shufflevector(__builtin_shufflevector(X, Y, 0, 8, 0, 1, 9, 0, 2, 10),
-                                              Z, 0, 1, 8, 3, 4, 9, 6, 7);
-  const LanePack m1 = __builtin_shufflevector(__builtin_shufflevector(X, Y, 0, 3, 11, 0, 4, 12, 0, 5),
-                                              Z, 10, 1, 2, 11, 4, 5, 12, 7);
-  const LanePack m2 = __builtin_shufflevector(__builtin_shufflevector(X, Y, 13, 0, 6, 14, 0, 7, 15, 0),
-                                              Z, 0, 13, 2, 3, 14, 5, 6, 15);
+  const LanePack m0 = __builtin_shufflevector(
+      __builtin_shufflevector(X, Y, 0, 8, 0, 1, 9, 0, 2, 10), Z, 0, 1, 8, 3, 4, 9, 6, 7);
+  const LanePack m1 = __builtin_shufflevector(
+      __builtin_shufflevector(X, Y, 0, 3, 11, 0, 4, 12, 0, 5), Z, 10, 1, 2, 11, 4, 5, 12, 7);
+  const LanePack m2 = __builtin_shufflevector(
+      __builtin_shufflevector(X, Y, 13, 0, 6, 14, 0, 7, 15, 0), Z, 0, 13, 2, 3, 14, 5, 6, 15);
   // the plus corners one node on: - - - u0 v0 w0 u1 v1 | w1 u2 ... u4 | v4 w4 ... w6 | u7 v7 w7
   const LanePack p0 = __builtin_shufflevector(__builtin_shufflevector(U, V, 0, 0, 0, 0, 8, 0, 1, 9),
                                               W, 0, 1, 2, 3, 4, 8, 6, 7);
-  const LanePack p1 = __builtin_shufflevector(__builtin_shufflevector(U, V, 0, 2, 10, 0, 3, 11, 0, 4),
-                                              W, 9, 1, 2, 10, 4, 5, 11, 7);
-  const LanePack p2 = __builtin_shufflevector(__builtin_shufflevector(U, V, 12, 0, 5, 13, 0, 6, 14, 0),
-                                              W, 0, 12, 2, 3, 13, 5, 6, 14);
-  const LanePack p3 = __builtin_shufflevector(__builtin_shufflevector(U, V, 7, 15, 0, 0, 0, 0, 0, 0),
-                                              W, 0, 1, 15, 3, 4, 5, 6, 7);
+  const LanePack p1 = __builtin_shufflevector(
+      __builtin_shufflevector(U, V, 0, 2, 10, 0, 3, 11, 0, 4), W, 9, 1, 2, 10, 4, 5, 11, 7);
+  const LanePack p2 = __builtin_shufflevector(
+      __builtin_shufflevector(U, V, 12, 0, 5, 13, 0, 6, 14, 0), W, 0, 12, 2, 3, 13, 5, 6, 14);
+  const LanePack p3 = __builtin_shufflevector(
+      __builtin_shufflevector(U, V, 7, 15, 0, 0, 0, 0, 0, 0), W, 0, 1, 15, 3, 4, 5, 6, 7);
   // node 0 has no plus term: a masked add, so its sum is f + minus as in addTriples
   __m512d s0 = _mm512_mask_add_pd(_mm512_loadu_pd(q), 0xF8, _mm512_loadu_pd(q), __m512d(p0));
   __m512d s1 = _mm512_add_pd(_mm512_loadu_pd(q + 8), __m512d(p1));

@@ -47,17 +47,17 @@ enum class ScatterMode : int
 };
 enum class NodeUpdateMode : int
 {
-  Fused,   ///< step 12 in step 6's sweep where the order allows it
+  Fused, ///< step 12 in step 6's sweep where the order allows it
   Separate
 };
 
-const char *deckName(MeshType t);      ///< block | brick_wall | gmsh
-const char *deckName(ConditionType t); ///< velocity | force | pressure
-const char *deckName(GaugeKind k);     ///< node | element | joint
-const char *deckName(HourglassForm f); ///< viscous | stiffness
-const char *deckName(ScatterMode s);   ///< gather | atomic
+const char *deckName(MeshType t);       ///< block | brick_wall | gmsh
+const char *deckName(ConditionType t);  ///< velocity | force | pressure
+const char *deckName(GaugeKind k);      ///< node | element | joint
+const char *deckName(HourglassForm f);  ///< viscous | stiffness
+const char *deckName(ScatterMode s);    ///< gather | atomic
 const char *deckName(NodeUpdateMode m); ///< fused | separate
-const char *deckName(ElementType t);   ///< line2 | quad4 | hex8 | tet4
+const char *deckName(ElementType t);    ///< line2 | quad4 | hex8 | tet4
 
 /// \brief Piecewise-linear time function (constant beyond its ends).
 struct TimeFunction
@@ -71,7 +71,7 @@ struct MeshSpec
 {
   MeshType type = MeshType::Block;
   ElementType element = ElementType::Quad4; ///< block, brick_wall (gmsh: from the file)
-  std::array<int, 3> elements{{1, 1, 1}};  ///< block: cells per direction
+  std::array<int, 3> elements{{1, 1, 1}};   ///< block: cells per direction
   std::array<Real, 3> origin{{0, 0, 0}};
   std::array<Real, 3> size{{0, 0, 0}};
   // brick_wall: bricks of `brick_size`, `elements` cells per brick, `count` bricks per direction,
@@ -95,7 +95,7 @@ struct PartSpec
 struct SetSpec
 {
   std::string name;
-  std::string part;                      ///< all nodes/external faces of this part (or prefix*)
+  std::string part; ///< all nodes/external faces of this part (or prefix*)
   bool has_box = false;
   std::array<Real, 3> box_min{{0, 0, 0}}, box_max{{0, 0, 0}}; ///< inclusive, with tolerance
 };
@@ -103,22 +103,22 @@ struct SetSpec
 struct BoundaryConditionSpec
 {
   ConditionType type = ConditionType::Velocity;
-  std::string set;      ///< node set (velocity, force) or face set (pressure)
-  int component = -1;   ///< velocity: 0,1,2 for x,y,z
-  Real value = 0;       ///< velocity (m/s) or pressure (Pa)
+  std::string set;                       ///< node set (velocity, force) or face set (pressure)
+  int component = -1;                    ///< velocity: 0,1,2 for x,y,z
+  Real value = 0;                        ///< velocity (m/s) or pressure (Pa)
   std::array<Real, 3> vector{{0, 0, 0}}; ///< force (N) per node
-  std::string function; ///< optional TimeFunction name multiplying the value
+  std::string function;                  ///< optional TimeFunction name multiplying the value
 };
 
 struct GaugeSpec
 {
   std::string name;
   GaugeKind kind = GaugeKind::Node;
-  Index id = -1;             ///< node or element id (0-based), or -1 when `point` is given
+  Index id = -1; ///< node or element id (0-based), or -1 when `point` is given
   bool has_point = false;
   std::array<Real, 3> point{{0, 0, 0}}; ///< nearest node / containing-or-nearest element
   Real radius = 0; ///< joint gauges: CPs within this distance of `point` [m]; 0: default
-  std::vector<std::string> quantities;  ///< see docs/input.md
+  std::vector<std::string> quantities; ///< see docs/input.md
 };
 
 /// \brief The quantities of each gauge kind (docs/input.md), in the order of their codes: a
@@ -132,7 +132,8 @@ inline const std::vector<std::string> &nodeGaugeQuantities()
 inline const std::vector<std::string> &elementGaugeQuantities()
 {
   static const std::vector<std::string> names = {
-      "sxx", "syy", "szz", "sxy", "syz", "szx", "pressure", "density", "plastic_strain", "energy", "q"};
+      "sxx",    "syy", "szz", "sxy", "syz", "szx", "pressure", "density", "plastic_strain",
+      "energy", "q"};
   return names;
 }
 inline const std::vector<std::string> &jointGaugeQuantities()
@@ -157,25 +158,25 @@ inline const std::vector<std::string> &gaugeQuantities(GaugeKind kind)
 struct SurfaceSpec
 {
   std::string name;
-  std::string part;       ///< part name or `prefix*` (exactly one of part, face_set is set)
-  std::string face_set;   ///< face set name
-  std::string option = "implicit";  ///< slide_line | sticky | explicit | implicit
-  Real a = 0.1;           ///< aperture [mm]
-  Real E0 = 0.05;         ///< initial normal modulus E0 = Kn a [GPa]
-  Real G = 0.05;          ///< shear modulus G = Ks a [GPa]
-  Real C = 0.001;         ///< cohesion [GPa]
-  Real phi0 = 40;         ///< initial friction angle [deg]
-  Real phi1 = 10;         ///< residual friction angle [deg]
-  Real usp0 = 100;        ///< characteristic slip of softening, in apertures [-]
-  Real psi0 = 0;          ///< initial dilation angle [deg]
-  Real sigma_cr = 0.1;    ///< no dilation above this normal stress [GPa]
-  Real Emax = -1;         ///< modulus cut-off [GPa]; < 0: auto (1e4 E0)
-  Real sigma_t = -1;      ///< tensile strength [GPa]; < 0: auto (C/tan(phi0))
-  Real C_safe = 0.5;      ///< safety factor of the explicit time-step limit; infinity: off
-  std::string dt_form = "mass_spring";         ///< mass_spring | paper
-  std::string dilation_update = "consistent";  ///< consistent | explicit
-  std::string distribution = "penetration";    ///< penetration | poc
-  std::string velocity = "weighted";           ///< weighted | average (face velocities)
+  std::string part;     ///< part name or `prefix*` (exactly one of part, face_set is set)
+  std::string face_set; ///< face set name
+  std::string option = "implicit"; ///< slide_line | sticky | explicit | implicit
+  Real a = 0.1;                    ///< aperture [mm]
+  Real E0 = 0.05;                  ///< initial normal modulus E0 = Kn a [GPa]
+  Real G = 0.05;                   ///< shear modulus G = Ks a [GPa]
+  Real C = 0.001;                  ///< cohesion [GPa]
+  Real phi0 = 40;                  ///< initial friction angle [deg]
+  Real phi1 = 10;                  ///< residual friction angle [deg]
+  Real usp0 = 100;                 ///< characteristic slip of softening, in apertures [-]
+  Real psi0 = 0;                   ///< initial dilation angle [deg]
+  Real sigma_cr = 0.1;             ///< no dilation above this normal stress [GPa]
+  Real Emax = -1;                  ///< modulus cut-off [GPa]; < 0: auto (1e4 E0)
+  Real sigma_t = -1;               ///< tensile strength [GPa]; < 0: auto (C/tan(phi0))
+  Real C_safe = 0.5;               ///< safety factor of the explicit time-step limit; infinity: off
+  std::string dt_form = "mass_spring";        ///< mass_spring | paper
+  std::string dilation_update = "consistent"; ///< consistent | explicit
+  std::string distribution = "penetration";   ///< penetration | poc
+  std::string velocity = "weighted";          ///< weighted | average (face velocities)
   bool traction_history = true;
   bool implicit_shear = true;
   bool brittle_tension = false;
@@ -185,21 +186,21 @@ struct SurfaceSpec
 struct ContactSpec
 {
   std::vector<SurfaceSpec> surfaces;
-  long search_interval = 1;  ///< cycles between CP searches; 0 = once, at the first cycle
+  long search_interval = 1;   ///< cycles between CP searches; 0 = once, at the first cycle
   int constraint_passes = 30; ///< sticky/slide-line solve iterations (docs/theory.md 10.8)
-  Real search_gap = -1;      ///< largest gap at which a CP is created [m]; < 0: largest face size
+  Real search_gap = -1;       ///< largest gap at which a CP is created [m]; < 0: largest face size
 };
 
 struct Deck
 {
   std::string title;
-  std::string path;          ///< deck file path
+  std::string path; ///< deck file path
   int dimension = 2;
   Geometry2D geometry = Geometry2D::PlaneStrain;
 
   // time
   Real end_time = 0;
-  Real courant = 0.5;        ///< S in (0, 1]
+  Real courant = 0.5; ///< S in (0, 1]
   Real dt_max = 1e30;
   long max_cycles = -1;
 
@@ -213,9 +214,9 @@ struct Deck
   std::array<Real, 3> gravity{{0, 0, 0}};
 
   // output
-  std::string output_dir;    ///< default out/<deck stem>
-  Real field_interval = 0;   ///< 0: first and last only
-  Real history_interval = 0; ///< 0: every cycle
+  std::string output_dir;       ///< default out/<deck stem>
+  Real field_interval = 0;      ///< 0: first and last only
+  Real history_interval = 0;    ///< 0: every cycle
   Real progress_interval = 2.0; ///< wall seconds between progress lines
 
   std::vector<MaterialSpec> materials;

@@ -15,11 +15,29 @@ namespace input_impl
 namespace
 {
 
-const std::vector<std::string> kSurfaceKeys = {
-    "name",     "part",  "face_set", "option",  "a",       "E0",
-    "G",        "C",     "phi0",     "phi1",    "usp0",    "psi0",
-    "sigma_cr", "Emax",  "sigma_t",  "C_safe",  "dt_form", "dilation_update",
-    "distribution", "velocity", "traction_history", "implicit_shear", "brittle_tension"};
+const std::vector<std::string> kSurfaceKeys = {"name",
+                                               "part",
+                                               "face_set",
+                                               "option",
+                                               "a",
+                                               "E0",
+                                               "G",
+                                               "C",
+                                               "phi0",
+                                               "phi1",
+                                               "usp0",
+                                               "psi0",
+                                               "sigma_cr",
+                                               "Emax",
+                                               "sigma_t",
+                                               "C_safe",
+                                               "dt_form",
+                                               "dilation_update",
+                                               "distribution",
+                                               "velocity",
+                                               "traction_history",
+                                               "implicit_shear",
+                                               "brittle_tension"};
 
 /// A Table 1 stress or modulus in GPa; values that only make sense in Pa get a unit hint.
 Real readGPa(const YamlMap &m, const std::string &key, Real fallback, bool positive)
@@ -144,8 +162,9 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
   spec.search_gap = readReal(c, "search_gap", spec.search_gap, isPositive, "> 0 (m)");
   if (!c.has("surfaces"))
     c.missing("surfaces");
-  const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(),
-                                       [](const PartSpec &p) { return p.mesh.type == MeshType::Gmsh; });
+  const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(), [](const PartSpec &p) {
+    return p.mesh.type == MeshType::Gmsh;
+  });
   std::map<std::string, int> seen;
   for (const YamlValue &item : c["surfaces"].list(1))
     spec.surfaces.push_back(parseSurface(item, names, check_sets, seen));

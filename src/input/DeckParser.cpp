@@ -27,7 +27,10 @@ const char *deckName(GaugeKind k)
 {
   return k == GaugeKind::Node ? "node" : k == GaugeKind::Element ? "element" : "joint";
 }
-const char *deckName(HourglassForm f) { return f == HourglassForm::Viscous ? "viscous" : "stiffness"; }
+const char *deckName(HourglassForm f)
+{
+  return f == HourglassForm::Viscous ? "viscous" : "stiffness";
+}
 const char *deckName(ScatterMode s) { return s == ScatterMode::Gather ? "gather" : "atomic"; }
 const char *deckName(NodeUpdateMode m) { return m == NodeUpdateMode::Fused ? "fused" : "separate"; }
 const char *deckName(ElementType t)
@@ -148,8 +151,8 @@ void parseOutput(const YamlMap &root, Deck &deck, const std::string &stem)
   deck.output_dir = "out/" + stem;
   if (!root.has("output"))
     return;
-  const YamlMap o = root["output"].map(
-      {"directory", "field_interval", "history_interval", "progress_interval"});
+  const YamlMap o =
+      root["output"].map({"directory", "field_interval", "history_interval", "progress_interval"});
   deck.output_dir = o.string("directory", deck.output_dir);
   deck.field_interval = readReal(o, "field_interval", 0, isNonNegative, ">= 0");
   deck.history_interval = readReal(o, "history_interval", 0, isNonNegative, ">= 0");
@@ -179,8 +182,8 @@ std::map<std::string, int> parseFunctions(const YamlMap &root, Deck &deck)
                        " entries");
       const Real t = pair[0].real(), v = pair[1].real();
       if (i > 0 && !(t > fn.t.back()))
-        pair[0].fail("times must increase strictly: t = " + pair[0].text() + " follows t = " +
-                     formatReal(fn.t.back()));
+        pair[0].fail("times must increase strictly: t = " + pair[0].text() +
+                     " follows t = " + formatReal(fn.t.back()));
       fn.t.push_back(t);
       fn.value.push_back(v);
     }
@@ -266,10 +269,9 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
       dir = ".";
 
     const YamlMap root = YamlValue(docs[0], "", docs[0].Mark().line + 1)
-                             .map({"title", "dimension", "geometry", "time", "numerics",
-                                   "gravity", "output", "materials", "parts", "node_sets",
-                                   "face_sets", "functions", "boundary_conditions", "gauges",
-                                   "contact"});
+                             .map({"title", "dimension", "geometry", "time", "numerics", "gravity",
+                                   "output", "materials", "parts", "node_sets", "face_sets",
+                                   "functions", "boundary_conditions", "gauges", "contact"});
     deck.title = root.string("title", stem);
     if (!root.has("dimension"))
       root.missing("dimension");

@@ -29,8 +29,8 @@ std::array<Real, 3> positiveVector(const YamlMap &m, const std::string &key, int
 
 MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
 {
-  const YamlMap m = value.map({"type", "element", "elements", "origin", "size", "brick_size",
-                               "count", "stagger", "file"});
+  const YamlMap m = value.map(
+      {"type", "element", "elements", "origin", "size", "brick_size", "count", "stagger", "file"});
   MeshSpec mesh;
   mesh.type = readChoice(m, "type", {MeshType::Block, MeshType::BrickWall, MeshType::Gmsh},
                          MeshType::Block);
@@ -113,8 +113,8 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
                     BoundaryConditionSpec &bc)
 {
   const YamlMap m = item.openMap();
-  bc.type = choiceOf(m["type"],
-                     {ConditionType::Velocity, ConditionType::Force, ConditionType::Pressure});
+  bc.type =
+      choiceOf(m["type"], {ConditionType::Velocity, ConditionType::Force, ConditionType::Pressure});
   const std::string set_key = bc.type == ConditionType::Pressure ? "face_set" : "node_set";
   if (bc.type == ConditionType::Velocity)
     restrictKeys(m, {"type", "node_set", "component", "value", "function"},
@@ -133,8 +133,7 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
     bc.component = c == "x" ? 0 : c == "y" ? 1 : 2;
     if (bc.component >= dim)
       m["component"].fail("component '" + c + "' does not exist in dimension " +
-                          std::to_string(dim) + " (expected " + (dim == 1 ? "x" : "x or y") +
-                          ")");
+                          std::to_string(dim) + " (expected " + (dim == 1 ? "x" : "x or y") + ")");
   }
   if (bc.type == ConditionType::Force)
     bc.vector = m["value"].realVector(dim);
@@ -188,8 +187,9 @@ void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names)
   parseSets(root, "face_sets", deck.dimension, names, names.face_sets, deck.face_sets);
   if (!root.has("boundary_conditions"))
     return;
-  const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(),
-                                       [](const PartSpec &p) { return p.mesh.type == MeshType::Gmsh; });
+  const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(), [](const PartSpec &p) {
+    return p.mesh.type == MeshType::Gmsh;
+  });
   for (const YamlValue &item : root["boundary_conditions"].list())
   {
     BoundaryConditionSpec bc;
@@ -205,7 +205,8 @@ void parseGauges(const YamlMap &root, Deck &deck)
   std::map<std::string, int> seen;
   for (const YamlValue &item : root["gauges"].list())
   {
-    const YamlMap m = item.map({"name", "node", "element", "point", "kind", "radius", "quantities"});
+    const YamlMap m =
+        item.map({"name", "node", "element", "point", "kind", "radius", "quantities"});
     GaugeSpec g;
     g.name = m["name"].string();
     claimName(seen, m["name"], g.name);
@@ -220,8 +221,8 @@ void parseGauges(const YamlMap &root, Deck &deck)
     else
     {
       if (m.has("kind"))
-        m["kind"].fail("only used with 'point' (a gauge given by '" + where +
-                       "' is a " + where + " gauge)");
+        m["kind"].fail("only used with 'point' (a gauge given by '" + where + "' is a " + where +
+                       " gauge)");
       g.kind = where == "node" ? GaugeKind::Node : GaugeKind::Element;
       const long id = m[where].integer();
       if (id < 0)

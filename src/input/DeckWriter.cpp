@@ -105,8 +105,7 @@ void writeMaterial(YAML::Emitter &out, const MaterialSpec &m)
   text(out, m.name);
   out << YAML::Key << "model" << YAML::Value;
   text(out, m.model);
-  out << YAML::Key << "eos" << YAML::Value << YAML::BeginMap << YAML::Key << "type"
-      << YAML::Value;
+  out << YAML::Key << "eos" << YAML::Value << YAML::BeginMap << YAML::Key << "type" << YAML::Value;
   text(out, m.eos);
   for (const auto &kv : m.values)
     if (kv.first.rfind("eos.", 0) == 0)
@@ -175,9 +174,9 @@ void writeContact(YAML::Emitter &out, const ContactSpec &c)
       text(out << YAML::Key << "face_set" << YAML::Value, s.face_set);
     out << YAML::Key << "option" << YAML::Value << s.option;
     const std::pair<const char *, Real> values[] = {
-        {"a", s.a},       {"E0", s.E0},     {"G", s.G},       {"C", s.C},
-        {"phi0", s.phi0}, {"phi1", s.phi1}, {"usp0", s.usp0}, {"psi0", s.psi0},
-        {"sigma_cr", s.sigma_cr}};
+        {"a", s.a},       {"E0", s.E0},     {"G", s.G},
+        {"C", s.C},       {"phi0", s.phi0}, {"phi1", s.phi1},
+        {"usp0", s.usp0}, {"psi0", s.psi0}, {"sigma_cr", s.sigma_cr}};
     for (const auto &kv : values)
       real(out << YAML::Key << kv.first << YAML::Value, kv.second);
     for (const auto &kv : {std::make_pair("Emax", s.Emax), std::make_pair("sigma_t", s.sigma_t)})

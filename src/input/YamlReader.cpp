@@ -32,8 +32,7 @@ std::string describe(const YAML::Node &node)
     return "a list";
   if (node.IsMap())
     return "a mapping";
-  return isQuoted(node) ? "the quoted string \"" + node.Scalar() + "\""
-                        : "'" + node.Scalar() + "'";
+  return isQuoted(node) ? "the quoted string \"" + node.Scalar() + "\"" : "'" + node.Scalar() + "'";
 }
 
 std::string childPath(const std::string &parent, const std::string &key)
@@ -91,8 +90,7 @@ long YamlValue::integer() const
   const long n = std::strtol(s.c_str(), &end, 10);
   if (s.empty() || end != s.c_str() + s.size())
     fail("expected an integer, got " + describe(_node));
-  if (errno == ERANGE || n > std::numeric_limits<int>::max() ||
-      n < std::numeric_limits<int>::min())
+  if (errno == ERANGE || n > std::numeric_limits<int>::max() || n < std::numeric_limits<int>::min())
     fail("integer '" + s + "' is out of range");
   return n;
 }

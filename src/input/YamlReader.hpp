@@ -35,9 +35,9 @@ public:
   /// \brief Throw InputError "<path> (line N): <what>".
   [[noreturn]] void fail(const std::string &what) const;
 
-  Real real() const;       ///< finite number (plain scalar)
-  long integer() const;    ///< integer (plain scalar, no fraction or exponent)
-  bool boolean() const;    ///< true | false
+  Real real() const;          ///< finite number (plain scalar)
+  long integer() const;       ///< integer (plain scalar, no fraction or exponent)
+  bool boolean() const;       ///< true | false
   std::string string() const; ///< any non-empty scalar
   /// \brief A string that must be one of `allowed` (suggests the closest otherwise).
   std::string choice(const std::vector<std::string> &allowed) const;

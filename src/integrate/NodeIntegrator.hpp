@@ -10,8 +10,8 @@ namespace scpdyn
 /// \brief Sums over nodes of one update (reduced in one pass).
 struct NodeSums
 {
-  Real kinetic = 0;     ///< 1/2 sum m |v^{n+1}|^2
-  Real kinetic_mid = 0; ///< 1/2 sum m v^n . v^{n+1} (the leapfrog's conserved kinetic part)
+  Real kinetic = 0;       ///< 1/2 sum m |v^{n+1}|^2
+  Real kinetic_mid = 0;   ///< 1/2 sum m v^n . v^{n+1} (the leapfrog's conserved kinetic part)
   Real external_work = 0; ///< work of f_ext and constraint reactions over the step, f.v^n dt
   Real momentum[3] = {0, 0, 0};
 
@@ -50,8 +50,8 @@ struct NodeIntegrator
   VectorView x, v, f_int, f_ext, prev_impulse;
   VectorView f_contact; ///< read with Contact only
   RealView mass;
-  DeviceView<int * [3]> bc;
-  RealView vbc;   ///< BoundaryConditions::velocity_current
+  DeviceView<int *[3]> bc;
+  RealView vbc;    ///< BoundaryConditions::velocity_current
   IndexView owned; ///< empty: every node counts in the sums
   Real dt = 0, half_dt = 0;
   Real g[3] = {0, 0, 0}; ///< the next cycle's gravity (Clear)

@@ -30,9 +30,8 @@ void addToRuns(std::vector<Index> &runs, size_t first_run, Index n, Index max_le
     runs.insert(runs.end(), {n, n + 1});
 }
 
-DeviceView<Index * [2]> toDevicePairs(const std::vector<Index> &flat, const std::string &label)
-{
-  DeviceView<Index * [2]> v(label, flat.size() / 2);
+DeviceView<Index *[2]> toDevicePairs(const std::vector<Index> &flat, const std::string &label) {
+  DeviceView<Index *[2]> v(label, flat.size() / 2);
   auto h = Kokkos::create_mirror_view(v);
   for (size_t i = 0; i < flat.size() / 2; ++i)
     for (int k = 0; k < 2; ++k)

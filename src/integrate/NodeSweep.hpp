@@ -94,12 +94,12 @@ struct NodeSweep
   bool active = false;
   int chunks = 1;
   bool loads = false;
-  Index early_nodes = 0; ///< nodes step 6 integrates
-  IndexView block_base;  ///< per (group, chunk), group-major: its first block
-  IndexView block_runs;  ///< blocks + 1: each block's first run in `runs`
-  DeviceView<Index * [2]> runs; ///< runs of consecutive early nodes [begin, end)
+  Index early_nodes = 0;             ///< nodes step 6 integrates
+  IndexView block_base;              ///< per (group, chunk), group-major: its first block
+  IndexView block_runs;              ///< blocks + 1: each block's first run in `runs`
+  DeviceView<Index *[2]> runs;       ///< runs of consecutive early nodes [begin, end)
   DeviceView<NodeSums *> block_sums; ///< per block: the sums of its nodes (this cycle)
-  DeviceView<Index * [2]> late_runs; ///< runs of at most 256 late nodes, ascending
+  DeviceView<Index *[2]> late_runs;  ///< runs of at most 256 late nodes, ascending
   NodeIntegrator node;
 
   /// The after-block hook: block b's number of the first block of a chunk.

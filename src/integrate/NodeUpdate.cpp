@@ -52,12 +52,12 @@ constexpr Index kNodeChunk = 256;
 /// updateNodes() in dimension Dim over all nodes, or over the given runs.
 template <int Dim, bool Loads, bool Clear, bool Contact>
 NodeSums integrateAll(const NodeIntegrator &node, const Index count,
-                      const DeviceView<Index * [2]> *given_runs)
+                      const DeviceView<Index *[2]> *given_runs)
 {
   NodeSums sums;
   if (given_runs)
   {
-    const DeviceView<Index * [2]> runs = *given_runs;
+    const DeviceView<Index *[2]> runs = *given_runs;
     Kokkos::parallel_reduce(
         "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, Index(runs.extent(0))),
         KOKKOS_LAMBDA(const Index r, NodeSums &s) {
@@ -79,7 +79,7 @@ NodeSums integrateAll(const NodeIntegrator &node, const Index count,
 
 template <int Dim, bool Contact>
 NodeSums integrateWithContact(const NodeIntegrator &node, const Index count, const bool loads,
-                        const bool clear, const DeviceView<Index * [2]> *runs)
+                              const bool clear, const DeviceView<Index *[2]> *runs)
 {
   if (clear)
     return loads ? integrateAll<Dim, true, true, Contact>(node, count, runs)
@@ -90,7 +90,7 @@ NodeSums integrateWithContact(const NodeIntegrator &node, const Index count, con
 
 template <int Dim>
 NodeSums integrateNodes(const NodeIntegrator &node, const Index count, const bool loads,
-                        const bool clear, const DeviceView<Index * [2]> *runs)
+                        const bool clear, const DeviceView<Index *[2]> *runs)
 {
   // contact forces have their own field, read only where there is one
   if (node.f_contact.extent(0) != 0)
@@ -102,7 +102,7 @@ NodeSums integrateNodes(const NodeIntegrator &node, const Index count, const boo
 
 NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt, int dim,
                      const IndexView &owned, const bool loads, const Real *next_gravity,
-                     const DeviceView<Index * [2]> *runs)
+                     const DeviceView<Index *[2]> *runs)
 {
   const NodeIntegrator node = nodeIntegrator(nodes, bcs.velocity_current, dt, owned, next_gravity);
   const bool clear = next_gravity != nullptr;
@@ -119,7 +119,8 @@ NodeSums sweepSums(const NodeSweep &sweep)
   NodeSums sums;
   Kokkos::parallel_reduce(
       "sweepSums", Kokkos::RangePolicy<ExecSpace>(0, Index(block_sums.extent(0))),
-      KOKKOS_LAMBDA(const Index b, NodeSums &s) { s += block_sums(b); }, Kokkos::Sum<NodeSums>(sums));
+      KOKKOS_LAMBDA(const Index b, NodeSums &s) { s += block_sums(b); },
+      Kokkos::Sum<NodeSums>(sums));
   return sums;
 }
 

@@ -34,7 +34,7 @@ NodeIntegrator nodeIntegrator(const NodeFields &nodes, const RealView &velocity_
 NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bc, Real dt, int dim,
                      const IndexView &owned = IndexView(), bool loads = true,
                      const Real *next_gravity = nullptr,
-                     const DeviceView<Index * [2]> *runs = nullptr);
+                     const DeviceView<Index *[2]> *runs = nullptr);
 
 /// \brief The sums of the early nodes of the last step 6 (NodeSweep::block_sums).
 NodeSums sweepSums(const NodeSweep &sweep);

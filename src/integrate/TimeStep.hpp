@@ -23,8 +23,8 @@ struct TimeStepLimits
 /// \brief The deck's controls of the time step.
 struct TimeStepControls
 {
-  Real courant = 0.5;  ///< the elements' Courant number (the deck's default)
-  Real dt_max = 1e30;  ///< the user's cap (the deck's default: none) [s]
+  Real courant = 0.5; ///< the elements' Courant number (the deck's default)
+  Real dt_max = 1e30; ///< the user's cap (the deck's default: none) [s]
 };
 
 /// \brief The elements' step with the Courant factor and the cap, min(courant h / c, dt_max),

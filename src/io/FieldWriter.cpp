@@ -39,11 +39,7 @@ const char *xdmfTopologyName(int type)
   return names[type];
 }
 
-
-std::string fieldError(const std::string &what)
-{
-  return "FieldWriter: " + what;
-}
+std::string fieldError(const std::string &what) { return "FieldWriter: " + what; }
 
 void checkName(const std::string &name, std::set<std::string> &seen, const char *where)
 {
@@ -146,7 +142,8 @@ FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh,
     for (size_t i = 0; i < rows.size(); ++i)
       if (rows[i] >= 0)
         p.local.push_back(long(i));
-    std::sort(p.local.begin(), p.local.end(), [&rows](long a, long b) { return rows[size_t(a)] < rows[size_t(b)]; });
+    std::sort(p.local.begin(), p.local.end(),
+              [&rows](long a, long b) { return rows[size_t(a)] < rows[size_t(b)]; });
     for (long i : p.local)
     {
       const auto r = static_cast<unsigned long long>(rows[size_t(i)]);
@@ -210,7 +207,8 @@ void FieldWriter::writeRows(std::int64_t loc, const std::string &name, const Row
   std::vector<T> packed(plan->local.size() * size_t(comps));
   for (size_t k = 0; k < plan->local.size(); ++k)
     for (int c = 0; c < comps; ++c)
-      packed[k * size_t(comps) + size_t(c)] = data[size_t(plan->local[k]) * size_t(comps) + size_t(c)];
+      packed[k * size_t(comps) + size_t(c)] =
+          data[size_t(plan->local[k]) * size_t(comps) + size_t(c)];
   writeDatasetRows(loc, name, dims, runs, packed.data(), _dxpl, _h5_path);
 }
 
@@ -226,10 +224,7 @@ FieldWriter::~FieldWriter()
   }
 }
 
-void FieldWriter::close()
-{
-  closeFile(_file, _dxpl, _h5_path);
-}
+void FieldWriter::close() { closeFile(_file, _dxpl, _h5_path); }
 
 void FieldWriter::writeMesh()
 {

@@ -141,8 +141,8 @@ struct PointFrame
 {
   double time = 0.0; ///< s
   long cycle = 0;
-  std::vector<double> points;          ///< n_points*3 (m)
-  std::vector<NamedField> scalars;     ///< n_points each
+  std::vector<double> points;      ///< n_points*3 (m)
+  std::vector<NamedField> scalars; ///< n_points each
 };
 
 /// \brief Appends point frames to `dir/<name>.h5` and keeps `dir/<name>.xmf` (an XDMF temporal

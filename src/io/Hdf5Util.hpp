@@ -42,10 +42,7 @@ inline hid_t createFieldFile(const std::string &path, hid_t fapl)
 {
   hid_t file = -1;
   // HDF5 would print its own error stack; the exception below says all the user needs.
-  H5E_BEGIN_TRY
-  {
-    file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-  }
+  H5E_BEGIN_TRY { file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl); }
   H5E_END_TRY;
   if (file < 0)
     throw std::runtime_error("FieldWriter: cannot create HDF5 file '" + path + "'");
@@ -222,12 +219,23 @@ inline std::string xmlEscape(const std::string &s)
   {
     switch (c)
     {
-    case '&': out += "&amp;"; break;
-    case '<': out += "&lt;"; break;
-    case '>': out += "&gt;"; break;
-    case '"': out += "&quot;"; break;
-    case '\'': out += "&apos;"; break;
-    default: out += c;
+    case '&':
+      out += "&amp;";
+      break;
+    case '<':
+      out += "&lt;";
+      break;
+    case '>':
+      out += "&gt;";
+      break;
+    case '"':
+      out += "&quot;";
+      break;
+    case '\'':
+      out += "&apos;";
+      break;
+    default:
+      out += c;
     }
   }
   return out;

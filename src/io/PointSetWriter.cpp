@@ -44,10 +44,7 @@ PointSetWriter::~PointSetWriter()
   }
 }
 
-void PointSetWriter::close()
-{
-  closeFile(_file, _dxpl, _h5_path);
-}
+void PointSetWriter::close() { closeFile(_file, _dxpl, _h5_path); }
 
 void PointSetWriter::write(const PointFrame &frame)
 {

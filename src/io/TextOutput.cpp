@@ -131,13 +131,27 @@ std::string jsonEscape(const std::string &s)
     const auto c = static_cast<unsigned char>(ch);
     switch (c)
     {
-    case '"': out += "\\\""; break;
-    case '\\': out += "\\\\"; break;
-    case '\b': out += "\\b"; break;
-    case '\f': out += "\\f"; break;
-    case '\n': out += "\\n"; break;
-    case '\r': out += "\\r"; break;
-    case '\t': out += "\\t"; break;
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\b':
+      out += "\\b";
+      break;
+    case '\f':
+      out += "\\f";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
     default:
       if (c < 0x20)
       {
@@ -154,10 +168,7 @@ std::string jsonEscape(const std::string &s)
 
 namespace
 {
-std::string jsonNumber(double v)
-{
-  return std::isfinite(v) ? formatDouble(v) : "null";
-}
+std::string jsonNumber(double v) { return std::isfinite(v) ? formatDouble(v) : "null"; }
 } // namespace
 
 JsonObject &JsonObject::set(const std::string &key, std::string text,

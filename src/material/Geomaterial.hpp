@@ -42,11 +42,11 @@ constexpr int kGeoEpsD = 11;     ///< dilatant volumetric strain at full damage 
 constexpr int kGeoHc = 12;       ///< compaction hardening: strength factor 1 + h_c at lock [-]
 
 // history layout
-constexpr int kGeoHistDamage = 0;   ///< D [-]
-constexpr int kGeoHistTensile = 1;  ///< remaining tensile strength T [Pa]
-constexpr int kGeoHistThetaP = 2;   ///< theta_p, plastic volumetric strain (compaction > 0)
-constexpr int kGeoHistThetaC = 3;   ///< theta_c, largest theta_p reached (sets the modulus)
-constexpr int kGeoHistThetaD = 4;   ///< theta_d, accumulated dilatant strain (sets D)
+constexpr int kGeoHistDamage = 0;  ///< D [-]
+constexpr int kGeoHistTensile = 1; ///< remaining tensile strength T [Pa]
+constexpr int kGeoHistThetaP = 2;  ///< theta_p, plastic volumetric strain (compaction > 0)
+constexpr int kGeoHistThetaC = 3;  ///< theta_c, largest theta_p reached (sets the modulus)
+constexpr int kGeoHistThetaD = 4;  ///< theta_d, accumulated dilatant strain (sets D)
 
 /// \brief Bulk modulus after compaction x (x = theta_c).
 KOKKOS_INLINE_FUNCTION Real geoBulk(const MaterialParams &p, Real x)
@@ -93,8 +93,8 @@ KOKKOS_INLINE_FUNCTION Real geoDilatancy(const MaterialParams &p, Real P)
 /// \brief Volumetric state of one element during its update.
 struct GeoState
 {
-  Real theta;   ///< total volumetric strain measured from theta_p's origin
-  Real P;       ///< pressure [Pa]
+  Real theta; ///< total volumetric strain measured from theta_p's origin
+  Real P;     ///< pressure [Pa]
   Real theta_p, theta_c, theta_d, D;
 };
 

@@ -13,16 +13,16 @@ namespace scpdyn
 {
 
 // model_params layout
-constexpr int kJcA = 0;         ///< A: initial yield stress [Pa]
-constexpr int kJcB = 1;         ///< B: hardening modulus [Pa]
-constexpr int kJcN = 2;         ///< n: hardening exponent [-]
-constexpr int kJcC = 3;         ///< C: strain-rate coefficient [-]
-constexpr int kJcM = 4;         ///< m: thermal-softening exponent [-]
-constexpr int kJcTmelt = 5;     ///< melt temperature [K]; 0 = no thermal softening
-constexpr int kJcTroom = 6;     ///< room (reference and initial) temperature [K]
-constexpr int kJcRate0 = 7;     ///< reference strain rate epsdot_0 [1/s]
-constexpr int kJcCp = 8;        ///< specific heat c_p [J/(kg K)]; 0 = isothermal
-constexpr int kJcChi = 9;       ///< Taylor-Quinney fraction of plastic work turned to heat
+constexpr int kJcA = 0;     ///< A: initial yield stress [Pa]
+constexpr int kJcB = 1;     ///< B: hardening modulus [Pa]
+constexpr int kJcN = 2;     ///< n: hardening exponent [-]
+constexpr int kJcC = 3;     ///< C: strain-rate coefficient [-]
+constexpr int kJcM = 4;     ///< m: thermal-softening exponent [-]
+constexpr int kJcTmelt = 5; ///< melt temperature [K]; 0 = no thermal softening
+constexpr int kJcTroom = 6; ///< room (reference and initial) temperature [K]
+constexpr int kJcRate0 = 7; ///< reference strain rate epsdot_0 [1/s]
+constexpr int kJcCp = 8;    ///< specific heat c_p [J/(kg K)]; 0 = isothermal
+constexpr int kJcChi = 9;   ///< Taylor-Quinney fraction of plastic work turned to heat
 
 // history layout
 constexpr int kJcHistTemperature = 0; ///< temperature [K]
@@ -65,8 +65,8 @@ struct JohnsonCookResidual
 /// plastic strain rate of the rate term is the increment's own (d eps_p / dt), so the
 /// returned stress lies exactly on the rate-dependent yield surface. Temperature is held at
 /// its start-of-step value (heating is applied after the return). Returns d eps_p.
-KOKKOS_INLINE_FUNCTION Real johnsonCookReturn(const MaterialParams &p, Real s[6], Real eps,
-                                              Real dt, Real T)
+KOKKOS_INLINE_FUNCTION Real johnsonCookReturn(const MaterialParams &p, Real s[6], Real eps, Real dt,
+                                              Real T)
 {
   const Real q_trial = vonMises(s);
   JohnsonCookResidual g{&p, q_trial, eps, dt, T};

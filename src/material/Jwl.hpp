@@ -20,19 +20,19 @@ namespace scpdyn
 {
 
 // model_params layout
-constexpr int kJwlA = 0;        ///< A [Pa]
-constexpr int kJwlB = 1;        ///< B [Pa]
-constexpr int kJwlR1 = 2;       ///< R1 [-]
-constexpr int kJwlR2 = 3;       ///< R2 [-]
-constexpr int kJwlOmega = 4;    ///< omega (Gruneisen coefficient of the products) [-]
-constexpr int kJwlE0 = 5;       ///< detonation energy per unit initial volume E0 [Pa = J/m^3]
-constexpr int kHeD = 6;         ///< detonation velocity D of the programmed burn [m/s]
-constexpr int kHePcj = 7;       ///< Chapman-Jouguet pressure (given or the model's) [Pa]
-constexpr int kHeIgnX = 8;      ///< ignition point x [m]
-constexpr int kHeIgnY = 9;      ///< ignition point y [m]
-constexpr int kHeIgnZ = 10;     ///< ignition point z [m]
-constexpr int kHeAxis = 11;     ///< -1: point ignition; 0|1|2: line through the point along x|y|z
-constexpr int kHeT0 = 12;       ///< initiation time [s]
+constexpr int kJwlA = 0;         ///< A [Pa]
+constexpr int kJwlB = 1;         ///< B [Pa]
+constexpr int kJwlR1 = 2;        ///< R1 [-]
+constexpr int kJwlR2 = 3;        ///< R2 [-]
+constexpr int kJwlOmega = 4;     ///< omega (Gruneisen coefficient of the products) [-]
+constexpr int kJwlE0 = 5;        ///< detonation energy per unit initial volume E0 [Pa = J/m^3]
+constexpr int kHeD = 6;          ///< detonation velocity D of the programmed burn [m/s]
+constexpr int kHePcj = 7;        ///< Chapman-Jouguet pressure (given or the model's) [Pa]
+constexpr int kHeIgnX = 8;       ///< ignition point x [m]
+constexpr int kHeIgnY = 9;       ///< ignition point y [m]
+constexpr int kHeIgnZ = 10;      ///< ignition point z [m]
+constexpr int kHeAxis = 11;      ///< -1: point ignition; 0|1|2: line through the point along x|y|z
+constexpr int kHeT0 = 12;        ///< initiation time [s]
 constexpr int kHeBurnWidth = 13; ///< burn ramp width in element lengths [-]
 constexpr int kHeBetaBurn = 14;  ///< 1: also burn on compression (1 - V)/(1 - V_CJ)
 constexpr int kHeVcj = 15;       ///< relative volume at the model's CJ state [-] (derived)
@@ -176,13 +176,12 @@ KOKKOS_INLINE_FUNCTION Real burnFraction(const MaterialParams &p, Real t, Real t
 /// hydrostatic. Returns the products' sound speed at the new state (as if F = 1, so the
 /// time step is already sized for the burn when an element lights).
 KOKKOS_INLINE_FUNCTION Real highExplosiveUpdate(const MaterialParams &p, const MaterialStep &st,
-                                                Real stress[6], Real &e,
-                                                Real history[kHistorySize])
+                                                Real stress[6], Real &e, Real history[kHistorySize])
 {
   const Real *m = p.model_params;
   const Real V = p.density / st.rho_new;
-  const Real F = burnFraction(p, st.time, history[kHeHistLightTime], st.length, V,
-                              history[kHeHistBurn]);
+  const Real F =
+      burnFraction(p, st.time, history[kHeHistLightTime], st.length, V, history[kHeHistBurn]);
   history[kHeHistBurn] = F;
 
   const Real rho_mid = 0.5 * (st.rho_old + st.rho_new);

@@ -31,35 +31,51 @@ const std::vector<KeyRule> &modelKeys(const std::string &model)
                                                {"youngs_modulus", false, 0},
                                                {"poisson_ratio", false, 0},
                                                {"shear_modulus", false, 0}};
-  static const std::vector<KeyRule> plastic = {{"density", true, 0},
-                                               {"youngs_modulus", false, 0},
-                                               {"poisson_ratio", false, 0},
-                                               {"shear_modulus", false, 0},
-                                               {"yield_stress", true, 0},
-                                               {"hardening_modulus", false, 0}};
-  static const std::vector<KeyRule> jc = {
-      {"density", true, 0},           {"youngs_modulus", false, 0},
-      {"poisson_ratio", false, 0},    {"shear_modulus", false, 0},
-      {"A", true, 0},                 {"B", true, 0},
-      {"n", true, 0},                 {"C", false, 0},
-      {"m", false, 1},                {"melt_temperature", false, kNone},
-      {"room_temperature", false, 294}, {"reference_strain_rate", false, 1},
-      {"specific_heat", false, kNone}, {"taylor_quinney", false, 0.9}};
-  static const std::vector<KeyRule> geo = {
-      {"density", true, 0},          {"youngs_modulus", false, 0},
-      {"poisson_ratio", false, 0},   {"shear_modulus", false, 0},
-      {"bulk_modulus", false, 0},    {"intact_strength", true, 0},
-      {"intact_friction", true, 0},  {"max_strength", true, 0},
-      {"damaged_friction", true, 0}, {"tensile_strength", true, 0},
-      {"damage_strain", true, 0},    {"dilatancy", false, 0},
-      {"dilatancy_pressure", false, 1e300}, {"porosity", false, 0},
-      {"crush_pressure", false, 0},  {"lock_pressure", false, 0},
-      {"solid_bulk_modulus", false, 0}, {"compaction_hardening", false, 0}};
-  static const std::vector<KeyRule> he = {
-      {"density", true, 0},        {"D", false, 0},           {"pcj", false, 0},
-      {"ignition_x", false, 0},    {"ignition_y", false, 0},  {"ignition_z", false, 0},
-      {"ignition_axis", false, -1}, {"initiation_time", false, 0},
-      {"burn_width", false, 1.5},  {"beta_burn", false, 1}};
+  static const std::vector<KeyRule> plastic = {
+      {"density", true, 0},        {"youngs_modulus", false, 0}, {"poisson_ratio", false, 0},
+      {"shear_modulus", false, 0}, {"yield_stress", true, 0},    {"hardening_modulus", false, 0}};
+  static const std::vector<KeyRule> jc = {{"density", true, 0},
+                                          {"youngs_modulus", false, 0},
+                                          {"poisson_ratio", false, 0},
+                                          {"shear_modulus", false, 0},
+                                          {"A", true, 0},
+                                          {"B", true, 0},
+                                          {"n", true, 0},
+                                          {"C", false, 0},
+                                          {"m", false, 1},
+                                          {"melt_temperature", false, kNone},
+                                          {"room_temperature", false, 294},
+                                          {"reference_strain_rate", false, 1},
+                                          {"specific_heat", false, kNone},
+                                          {"taylor_quinney", false, 0.9}};
+  static const std::vector<KeyRule> geo = {{"density", true, 0},
+                                           {"youngs_modulus", false, 0},
+                                           {"poisson_ratio", false, 0},
+                                           {"shear_modulus", false, 0},
+                                           {"bulk_modulus", false, 0},
+                                           {"intact_strength", true, 0},
+                                           {"intact_friction", true, 0},
+                                           {"max_strength", true, 0},
+                                           {"damaged_friction", true, 0},
+                                           {"tensile_strength", true, 0},
+                                           {"damage_strain", true, 0},
+                                           {"dilatancy", false, 0},
+                                           {"dilatancy_pressure", false, 1e300},
+                                           {"porosity", false, 0},
+                                           {"crush_pressure", false, 0},
+                                           {"lock_pressure", false, 0},
+                                           {"solid_bulk_modulus", false, 0},
+                                           {"compaction_hardening", false, 0}};
+  static const std::vector<KeyRule> he = {{"density", true, 0},
+                                          {"D", false, 0},
+                                          {"pcj", false, 0},
+                                          {"ignition_x", false, 0},
+                                          {"ignition_y", false, 0},
+                                          {"ignition_z", false, 0},
+                                          {"ignition_axis", false, -1},
+                                          {"initiation_time", false, 0},
+                                          {"burn_width", false, 1.5},
+                                          {"beta_burn", false, 1}};
   static const std::vector<KeyRule> none;
   if (model == "elastic")
     return elastic;
@@ -79,8 +95,8 @@ const std::vector<KeyRule> &eosKeys(const std::string &eos)
   static const std::vector<KeyRule> linear = {};
   static const std::vector<KeyRule> mg = {
       {"eos.c0", true, 0}, {"eos.s", true, 0}, {"eos.gamma0", true, 0}, {"eos.a", false, 0}};
-  static const std::vector<KeyRule> jwl = {{"eos.A", true, 0},  {"eos.B", true, 0},
-                                           {"eos.R1", true, 0}, {"eos.R2", true, 0},
+  static const std::vector<KeyRule> jwl = {{"eos.A", true, 0},     {"eos.B", true, 0},
+                                           {"eos.R1", true, 0},    {"eos.R2", true, 0},
                                            {"eos.omega", true, 0}, {"eos.E0", true, 0}};
   return eos == "mie_gruneisen" ? mg : eos == "jwl" ? jwl : linear;
 }
@@ -257,15 +273,16 @@ JwlCjState validateHighExplosive(const MaterialSpec &spec, const MaterialParams 
   {
     requirePositive(spec, "D");
     if (std::fabs(get(spec, "D", 0) / cj.D - 1) > 0.05)
-      fail(spec, "D", "differs by more than 5 % from the JWL model's CJ detonation velocity " +
-                          num(cj.D) + " m/s (density or JWL constants inconsistent?)");
+      fail(spec, "D",
+           "differs by more than 5 % from the JWL model's CJ detonation velocity " + num(cj.D) +
+               " m/s (density or JWL constants inconsistent?)");
   }
   if (has(spec, "pcj"))
   {
     requirePositive(spec, "pcj");
     if (std::fabs(get(spec, "pcj", 0) / cj.p - 1) > 0.05)
-      fail(spec, "pcj", "differs by more than 5 % from the JWL model's CJ pressure " +
-                            num(cj.p) + " Pa");
+      fail(spec, "pcj",
+           "differs by more than 5 % from the JWL model's CJ pressure " + num(cj.p) + " Pa");
   }
   const double axis = get(spec, "ignition_axis", -1);
   if (!(axis == -1 || axis == 0 || axis == 1 || axis == 2))
@@ -283,9 +300,10 @@ void validateKeys(const MaterialSpec &spec)
   static const std::set<std::string> models = {"elastic", "elastic_plastic", "johnson_cook",
                                                "geomaterial", "high_explosive"};
   if (!models.count(spec.model))
-    fail(spec, "model",
-         "unknown model '" + spec.model +
-             "' (expected elastic | elastic_plastic | johnson_cook | geomaterial | high_explosive)");
+    fail(
+        spec, "model",
+        "unknown model '" + spec.model +
+            "' (expected elastic | elastic_plastic | johnson_cook | geomaterial | high_explosive)");
   if (spec.eos != "linear" && spec.eos != "mie_gruneisen" && spec.eos != "jwl")
     fail(spec, "eos.type",
          "unknown eos '" + spec.eos + "' (expected linear | mie_gruneisen | jwl)");
@@ -300,8 +318,8 @@ void validateKeys(const MaterialSpec &spec)
     {
       allowed.insert(r.key);
       if (r.required && !has(spec, r.key))
-        fail(spec, r.key, "required key is missing for model '" + spec.model + "' / eos '" +
-                              spec.eos + "'");
+        fail(spec, r.key,
+             "required key is missing for model '" + spec.model + "' / eos '" + spec.eos + "'");
     }
   for (const auto &kv : spec.values)
   {
@@ -334,9 +352,9 @@ void validateKeys(const MaterialSpec &spec)
 MaterialParams convert(const MaterialSpec &spec)
 {
   MaterialParams p;
-  p.model = spec.model == "elastic_plastic" ? MaterialModel::ElasticPlastic
-            : spec.model == "johnson_cook"  ? MaterialModel::JohnsonCook
-            : spec.model == "geomaterial"   ? MaterialModel::Geomaterial
+  p.model = spec.model == "elastic_plastic"  ? MaterialModel::ElasticPlastic
+            : spec.model == "johnson_cook"   ? MaterialModel::JohnsonCook
+            : spec.model == "geomaterial"    ? MaterialModel::Geomaterial
             : spec.model == "high_explosive" ? MaterialModel::HighExplosive
                                              : MaterialModel::Elastic;
   p.eos = spec.eos == "mie_gruneisen" ? EosModel::MieGruneisen

@@ -31,13 +31,13 @@ struct MaterialParams
 {
   MaterialModel model = MaterialModel::Elastic;
   EosModel eos = EosModel::Linear;
-  Real density = 0; ///< reference density rho0 [kg/m^3]
-  Real bulk = 0;    ///< K [Pa]
-  Real shear = 0;   ///< G [Pa]
+  Real density = 0;           ///< reference density rho0 [kg/m^3]
+  Real bulk = 0;              ///< K [Pa]
+  Real shear = 0;             ///< G [Pa]
   Real yield_stress = 0;      ///< initial yield stress [Pa] (ElasticPlastic)
   Real hardening_modulus = 0; ///< plastic modulus H = d sigma_y / d eps_p [Pa]
   Real mg_c0 = 0, mg_s = 0, mg_gamma0 = 0, mg_a = 0; ///< Mie-Gruneisen
-  Real model_params[kModelParams] = {}; ///< layout owned by each later model's header
+  Real model_params[kModelParams] = {};              ///< layout owned by each later model's header
 };
 
 /// \brief P-wave (uniaxial-strain) modulus K + 4G/3 [Pa]: rho c^2 of the elastic sound speed.
@@ -55,13 +55,13 @@ KOKKOS_INLINE_FUNCTION Real soundSpeedSquaredFloor(const MaterialParams &p)
 /// \brief Everything a material needs about one element for one step.
 struct MaterialStep
 {
-  Real D[6];      ///< rate of deformation (Voigt, tensor components) [1/s]
-  Real dt;        ///< time step [s]
-  Real rho_old;   ///< density at the previous half step [kg/m^3]
-  Real rho_new;   ///< density now [kg/m^3]
-  Real q;         ///< artificial bulk viscosity pressure of this step [Pa]
-  Real time;      ///< time at the half step [s] (programmed burn)
-  Real length;    ///< element characteristic length [m] (programmed burn width)
+  Real D[6];    ///< rate of deformation (Voigt, tensor components) [1/s]
+  Real dt;      ///< time step [s]
+  Real rho_old; ///< density at the previous half step [kg/m^3]
+  Real rho_new; ///< density now [kg/m^3]
+  Real q;       ///< artificial bulk viscosity pressure of this step [Pa]
+  Real time;    ///< time at the half step [s] (programmed burn)
+  Real length;  ///< element characteristic length [m] (programmed burn width)
 };
 
 } // namespace scpdyn

@@ -17,12 +17,12 @@ namespace scpdyn
 struct MaterialSpec
 {
   std::string name;
-  std::string model = "elastic";     ///< elastic | elastic_plastic | ... (docs/input.md)
-  std::string eos = "linear";        ///< linear | mie_gruneisen | ...
-  std::map<std::string, Real> values;   ///< every numeric key of the material (and of its eos:
-                                        ///< eos keys are stored as "eos.<key>")
-  std::map<std::string, int> lines;     ///< YAML line of each key, for error messages
-  int index = 0;                         ///< position in the deck's materials list
+  std::string model = "elastic";      ///< elastic | elastic_plastic | ... (docs/input.md)
+  std::string eos = "linear";         ///< linear | mie_gruneisen | ...
+  std::map<std::string, Real> values; ///< every numeric key of the material (and of its eos:
+                                      ///< eos keys are stored as "eos.<key>")
+  std::map<std::string, int> lines;   ///< YAML line of each key, for error messages
+  int index = 0;                      ///< position in the deck's materials list
   int line = 0;
 };
 

@@ -14,7 +14,8 @@ namespace scpdyn
 /// \brief Set-up of an element's history slots before the first cycle from the element
 /// centroid [m]: the lighting time of a programmed burn, the room temperature of a
 /// Johnson-Cook material, the intact tensile strength of a geomaterial; all else zero.
-KOKKOS_INLINE_FUNCTION void initializeMaterialHistory(const MaterialParams &p, const Real centroid[3],
+KOKKOS_INLINE_FUNCTION void initializeMaterialHistory(const MaterialParams &p,
+                                                      const Real centroid[3],
                                                       Real history[kHistorySize])
 {
   for (int k = 0; k < kHistorySize; ++k)
@@ -99,8 +100,8 @@ KOKKOS_INLINE_FUNCTION Real updateMaterial(const MaterialParams &p, const Materi
     johnsonCookDeviatoric(p, st, s, eps, history);
 
   Real h;
-  const Real e_star = metalEnergyStar(s_old, s, st.D, trD, p_old, st.q, st.dt, st.rho_old,
-                                      st.rho_new, e, h);
+  const Real e_star =
+      metalEnergyStar(s_old, s, st.D, trD, p_old, st.q, st.dt, st.rho_old, st.rho_new, e, h);
 
   Real p_new = 0, c2 = 0;
   switch (p.eos)

@@ -48,8 +48,8 @@ KOKKOS_INLINE_FUNCTION R metalEnergyStar(const R s_old[6], const R s[6], const R
   for (int k = 0; k < 6; ++k)
     m[k] = Real(0.5) * (s_old[k] + s[k]);
   h = dt / rho_mid;
-  const R sD = m[0] * D[0] + m[1] * D[1] + m[2] * D[2] +
-               Real(2) * (m[3] * D[3] + m[4] * D[4] + m[5] * D[5]);
+  const R sD =
+      m[0] * D[0] + m[1] * D[1] + m[2] * D[2] + Real(2) * (m[3] * D[3] + m[4] * D[4] + m[5] * D[5]);
   return e + h * (sD - Real(0.5) * p_old * trD - q * trD);
 }
 

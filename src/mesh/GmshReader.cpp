@@ -20,9 +20,9 @@ using Tag = long long;
 std::string gmshTypeName(int t)
 {
   static const std::map<int, std::string> names = {
-      {1, "line2"},  {2, "tri3"},  {3, "quad4"},  {4, "tet4"},   {5, "hex8"},   {6, "prism6"},
-      {7, "pyramid5"}, {8, "line3"}, {9, "tri6"}, {10, "quad9"}, {11, "tet10"}, {12, "hex27"},
-      {15, "point"}, {16, "quad8"}, {17, "hex20"}};
+      {1, "line2"},  {2, "tri3"},     {3, "quad4"},  {4, "tet4"},   {5, "hex8"},
+      {6, "prism6"}, {7, "pyramid5"}, {8, "line3"},  {9, "tri6"},   {10, "quad9"},
+      {11, "tet10"}, {12, "hex27"},   {15, "point"}, {16, "quad8"}, {17, "hex20"}};
   auto it = names.find(t);
   return "gmsh type " + std::to_string(t) + (it != names.end() ? " (" + it->second + ")" : "");
 }
@@ -68,7 +68,14 @@ struct Lines
   {
     size_t used = 0;
     Tag v = 0;
-    try { v = std::stoll(s, &used); } catch (const std::exception &) { used = 0; }
+    try
+    {
+      v = std::stoll(s, &used);
+    }
+    catch (const std::exception &)
+    {
+      used = 0;
+    }
     if (used == 0 || used != s.size())
       fail("expected an integer, got '" + s + "'");
     return v;
@@ -77,7 +84,14 @@ struct Lines
   {
     size_t used = 0;
     Real v = 0;
-    try { v = std::stod(s, &used); } catch (const std::exception &) { used = 0; }
+    try
+    {
+      v = std::stod(s, &used);
+    }
+    catch (const std::exception &)
+    {
+      used = 0;
+    }
     if (used == 0 || used != s.size())
       fail("expected a number, got '" + s + "'");
     return v;
@@ -93,8 +107,8 @@ struct Block
 
 struct FileData
 {
-  std::map<std::pair<int, int>, std::string> names;        // (dim, phys tag) -> name
-  std::map<std::pair<int, int>, std::vector<int>> physOf;  // (dim, entity) -> phys tags
+  std::map<std::pair<int, int>, std::string> names;       // (dim, phys tag) -> name
+  std::map<std::pair<int, int>, std::vector<int>> physOf; // (dim, entity) -> phys tags
   std::unordered_map<Tag, std::array<Real, 3>> coords;
   std::vector<Block> blocks;
 };
@@ -165,8 +179,13 @@ void readSection(Lines &in, const std::string &name, FileData &fd)
     {
       in.need(name);
       auto h = in.tokens(4, "entityDim entityTag elementType numElements");
-      Block blk{int(in.toInt(h[0])), int(in.toInt(h[1])), int(in.toInt(h[2])), in.no,
-                int(in.toInt(h[3])), {}, {}};
+      Block blk{int(in.toInt(h[0])),
+                int(in.toInt(h[1])),
+                int(in.toInt(h[2])),
+                in.no,
+                int(in.toInt(h[3])),
+                {},
+                {}};
       for (int i = 0; i < blk.count; ++i)
       {
         in.need(name);
@@ -188,8 +207,7 @@ void readSection(Lines &in, const std::string &name, FileData &fd)
     in.need(name);
     if (in.text == end)
       return;
-    if (name == "$PhysicalNames" || name == "$Entities" || name == "$Nodes" ||
-        name == "$Elements")
+    if (name == "$PhysicalNames" || name == "$Entities" || name == "$Nodes" || name == "$Elements")
       in.fail("expected " + end + ", got '" + in.text + "'");
   }
 }
@@ -247,8 +265,10 @@ void orient(ElementType t, const std::vector<std::array<Real, 3>> &x, Index *n)
 
 bool topType(int gtype, int dim, ElementType &t)
 {
-  const std::map<int, ElementType> map = {{1, ElementType::Line2}, {3, ElementType::Quad4},
-                                          {4, ElementType::Tet4}, {5, ElementType::Hex8}};
+  const std::map<int, ElementType> map = {{1, ElementType::Line2},
+                                          {3, ElementType::Quad4},
+                                          {4, ElementType::Tet4},
+                                          {5, ElementType::Hex8}};
   auto it = map.find(gtype);
   if (it == map.end() || dimensionOf(it->second) != dim)
     return false;
@@ -315,8 +335,9 @@ HostMesh readGmsh41(const std::string &path)
       continue;
     ElementType t;
     if (!topType(b.type, top, t))
-      in.failAt(b.line, "unsupported element type " + gmshTypeName(b.type) + " in the top dimension " +
-                            std::to_string(top) + " (use line2, quad4, hex8 or tet4)");
+      in.failAt(b.line, "unsupported element type " + gmshTypeName(b.type) +
+                            " in the top dimension " + std::to_string(top) +
+                            " (use line2, quad4, hex8 or tet4)");
     const auto &g = groupsOf(fd, b);
     if (g.size() > 1)
       in.failAt(b.line, "elements of entity " + std::to_string(b.entity) + " belong to " +
@@ -333,8 +354,8 @@ HostMesh readGmsh41(const std::string &path)
 
   HostMesh mesh;
   mesh.dim = top;
-  std::vector<Tag> gmshTag;                              // our node -> gmsh tag
-  std::unordered_map<Tag, std::vector<Index>> copies;    // gmsh tag -> our nodes
+  std::vector<Tag> gmshTag;                           // our node -> gmsh tag
+  std::unordered_map<Tag, std::vector<Index>> copies; // gmsh tag -> our nodes
   for (int phys : order)
   {
     const auto &blocks = groups[phys];
@@ -390,7 +411,8 @@ HostMesh readGmsh41(const std::string &path)
     for (int k = top; k < 3; ++k)
       if (std::abs(mesh.coords[i][k]) > 1e-12 * extent)
         in.fail("node " + std::to_string(gmshTag[i]) + " of this " + std::to_string(top) +
-                "D mesh has a non-zero " + "xyz"[k] + " coordinate (2D meshes lie in z = 0, 1D along x)");
+                "D mesh has a non-zero " + "xyz"[k] +
+                " coordinate (2D meshes lie in z = 0, 1D along x)");
   try
   {
     checkElements(mesh);
@@ -441,7 +463,8 @@ HostMesh readGmsh41(const std::string &path)
         auto it = faceOf.find(key);
         if (it == faceOf.end())
           in.failAt(b.lines[e], "element of physical group '" + name + "' (dimension " +
-                                    std::to_string(b.dim) + ") is not an external face of any part; "
+                                    std::to_string(b.dim) +
+                                    ") is not an external face of any part; "
                                     "mixed top dimensions or interior faces are not supported");
         for (size_t f : it->second)
           faceSet->push_back(external[f]);

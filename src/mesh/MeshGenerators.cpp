@@ -13,10 +13,14 @@ const char *typeName(ElementType t)
 {
   switch (t)
   {
-  case ElementType::Line2: return "line2";
-  case ElementType::Quad4: return "quad4";
-  case ElementType::Hex8: return "hex8";
-  case ElementType::Tet4: return "tet4";
+  case ElementType::Line2:
+    return "line2";
+  case ElementType::Quad4:
+    return "quad4";
+  case ElementType::Hex8:
+    return "hex8";
+  case ElementType::Tet4:
+    return "tet4";
   }
   return "?";
 }
@@ -91,8 +95,8 @@ void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
           conn.insert(conn.end(), {node(i, 0, 0), node(i + 1, 0, 0)});
           break;
         case ElementType::Quad4:
-          conn.insert(conn.end(), {node(i, j, 0), node(i + 1, j, 0), node(i + 1, j + 1, 0),
-                                   node(i, j + 1, 0)});
+          conn.insert(conn.end(),
+                      {node(i, j, 0), node(i + 1, j, 0), node(i + 1, j + 1, 0), node(i, j + 1, 0)});
           break;
         case ElementType::Hex8:
           conn.insert(conn.end(), {node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k),
@@ -168,8 +172,8 @@ void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type
         if (is3d)
           o[1] = origin[1] + brick_size[1] * j;
         o[course_axis] = origin[course_axis] + brick_size[course_axis] * c;
-        const std::string name = prefix + "." + std::to_string(c) + "." +
-                                 std::to_string(j * int(seg.size()) + int(i));
+        const std::string name =
+            prefix + "." + std::to_string(c) + "." + std::to_string(j * int(seg.size()) + int(i));
         appendBlock(mesh, name, type, cells, o, size);
       }
   }

@@ -53,8 +53,8 @@ std::string elementProblem(const HostMesh &mesh, ElementType type, const Index *
       const Vec3 e1 = sub(x((i + 1) % 4), x(i)), e2 = sub(x((i + 3) % 4), x(i));
       const Real cross = e1[0] * e2[1] - e1[1] * e2[0];
       if (!(cross > kDegenerate * norm(e1) * norm(e2)))
-        return "inverted or degenerate at corner " + std::to_string(i) +
-               " (signed corner area " + std::to_string(0.5 * cross) + " m^2)";
+        return "inverted or degenerate at corner " + std::to_string(i) + " (signed corner area " +
+               std::to_string(0.5 * cross) + " m^2)";
     }
     return "";
   case ElementType::Hex8:
@@ -150,10 +150,14 @@ int faceLocalNode(ElementType t, int f, int i)
 {
   switch (t)
   {
-  case ElementType::Line2: return kLine2Faces[f][i];
-  case ElementType::Quad4: return kQuad4Faces[f][i];
-  case ElementType::Hex8: return kHex8Faces[f][i];
-  case ElementType::Tet4: return kTet4Faces[f][i];
+  case ElementType::Line2:
+    return kLine2Faces[f][i];
+  case ElementType::Quad4:
+    return kQuad4Faces[f][i];
+  case ElementType::Hex8:
+    return kHex8Faces[f][i];
+  case ElementType::Tet4:
+    return kTet4Faces[f][i];
   }
   return -1;
 }
@@ -349,7 +353,8 @@ void checkElements(const HostMesh &mesh)
       throw std::runtime_error("part '" + part.name + "' has no elements");
     const int npe = nodesPerElement(part.type);
     if (part.connectivity.size() % size_t(npe) != 0)
-      throw std::runtime_error("part '" + part.name + "': connectivity length is not a multiple of " +
+      throw std::runtime_error("part '" + part.name +
+                               "': connectivity length is not a multiple of " +
                                std::to_string(npe));
     for (Index n : part.connectivity)
       if (n < 0 || n >= mesh.numNodes())

@@ -68,16 +68,16 @@ struct Model
   DeviceView<MaterialParams *> materials;
   std::vector<MaterialParams> materials_host;
   BoundaryConditions bc;
-  bool external_loads = true; ///< hasExternalLoads(): steps 5 and 12 handle f_ext
-  ElementControls controls;   ///< the deck's element controls (the cycle sets dt and time)
+  bool external_loads = true;    ///< hasExternalLoads(): steps 5 and 12 handle f_ext
+  ElementControls controls;      ///< the deck's element controls (the cycle sets dt and time)
   Real initial_element_step = 0; ///< the elements' h / c in the initial state, this rank [s]
   std::vector<GaugeSlot> gauges;
   std::vector<JointGauge> joint_gauges;
-  IndexView gauge_id;   ///< device copies of the gauge slots
-  IndexView gauge_code; ///< quantity code, + 100 for element quantities
-  std::vector<int> part_spec;                 ///< deck parts[] entry of every mesh part
-  std::vector<Index> host_to_device_element;  ///< mesh element id -> device element id
-  std::shared_ptr<ContactSystem> contact;     ///< null without contact surfaces
+  IndexView gauge_id;                        ///< device copies of the gauge slots
+  IndexView gauge_code;                      ///< quantity code, + 100 for element quantities
+  std::vector<int> part_spec;                ///< deck parts[] entry of every mesh part
+  std::vector<Index> host_to_device_element; ///< mesh element id -> device element id
+  std::shared_ptr<ContactSystem> contact;    ///< null without contact surfaces
 
   MPI_Comm comm = MPI_COMM_WORLD;
   int rank = 0, num_ranks = 1;

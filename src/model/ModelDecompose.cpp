@@ -14,10 +14,7 @@
 namespace scpdyn
 {
 
-Index Model::globalNode(Index local) const
-{
-  return dd ? dd->global_node[size_t(local)] : local;
-}
+Index Model::globalNode(Index local) const { return dd ? dd->global_node[size_t(local)] : local; }
 
 Index Model::globalElement(Index mesh_element) const
 {
@@ -107,7 +104,8 @@ void ModelSetup::finishDecomposition()
 
 void ModelSetup::checkSetNotEmpty(std::size_t local_count, const std::string &message) const
 {
-  const long long total = _m.dd ? allReduceSum((long long)local_count, _m.comm) : (long long)local_count;
+  const long long total =
+      _m.dd ? allReduceSum((long long)local_count, _m.comm) : (long long)local_count;
   if (total == 0)
     throw InputError(message);
 }

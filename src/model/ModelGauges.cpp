@@ -47,7 +47,9 @@ void ModelSetup::setupGauges()
           const int nn = nodesPerElement(p.type);
           for (int a = 0; a < nn; ++a)
             for (int i = 0; i < 3; ++i)
-              c[i] += mesh.coords[size_t(p.connectivity[size_t((k - e_first) * nn + a)])][size_t(i)] / nn;
+              c[i] +=
+                  mesh.coords[size_t(p.connectivity[size_t((k - e_first) * nn + a)])][size_t(i)] /
+                  nn;
         }
         else
           for (int i = 0; i < 3; ++i)
@@ -74,21 +76,22 @@ void ModelSetup::setupGauges()
       const Index local = it != map.end() && *it == id ? Index(it - map.begin()) : -1;
       device_id = local < 0                          ? -1
                   : on_element                       ? _m.host_to_device_element[size_t(local)]
-                  : _m.dd->owned[size_t(local)] != 0   ? local
+                  : _m.dd->owned[size_t(local)] != 0 ? local
                                                      : -1;
     }
-    const bool joint = spec.kind == GaugeKind::Joint; // the nearest node carries it with the material
+    const bool joint =
+        spec.kind == GaugeKind::Joint; // the nearest node carries it with the material
     const auto &names = gaugeQuantities(spec.kind);
     for (const auto &q : spec.quantities)
     {
       const int code = int(std::find(names.begin(), names.end(), q) - names.begin());
       if (code == int(names.size()))
-        throw InputError(key + ".quantities: unknown quantity '" + q + "' for a " + deckName(spec.kind) +
-                         " gauge");
+        throw InputError(key + ".quantities: unknown quantity '" + q + "' for a " +
+                         deckName(spec.kind) + " gauge");
       // a joint gauge's slot is filled by jointGaugeValues(); the kernel leaves it at 0
       const Index slot_id = joint ? -1 : device_id;
       _m.gauges.push_back({spec.name + ":" + q, on_element, slot_id, code,
-                         joint ? int(_m.joint_gauges.size()) : -1});
+                           joint ? int(_m.joint_gauges.size()) : -1});
       ids.push_back(slot_id);
       codes.push_back(joint ? 0 : code + (on_element ? 100 : 0));
     }

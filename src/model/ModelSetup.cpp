@@ -120,8 +120,8 @@ void ModelSetup::setupMesh()
       if (m.type == MeshType::Block)
         appendBlock(_m.mesh, spec.name, m.element, m.elements, m.origin, m.size);
       else if (m.type == MeshType::BrickWall)
-        appendBrickWall(_m.mesh, spec.name, m.element, m.elements, m.origin,
-                        m.brick_size, m.count, m.stagger);
+        appendBrickWall(_m.mesh, spec.name, m.element, m.elements, m.origin, m.brick_size, m.count,
+                        m.stagger);
       else
       {
         HostMesh g = readGmsh41(m.file);
@@ -149,8 +149,9 @@ void ModelSetup::setupMesh()
     _m.part_spec.resize(_m.mesh.parts.size(), int(s));
   }
   if (_m.mesh.dim != _m.deck.dimension)
-    throw InputError(_m.deck.path + ": dimension: the deck says " + std::to_string(_m.deck.dimension) +
-                     " but the meshes are " + std::to_string(_m.mesh.dim) + "-dimensional");
+    throw InputError(_m.deck.path + ": dimension: the deck says " +
+                     std::to_string(_m.deck.dimension) + " but the meshes are " +
+                     std::to_string(_m.mesh.dim) + "-dimensional");
   try
   {
     if (merge_parts.size() > 1)
@@ -162,8 +163,9 @@ void ModelSetup::setupMesh()
           lo[i] = std::min(lo[i], c[size_t(i)]);
           hi[i] = std::max(hi[i], c[size_t(i)]);
         }
-      const Real diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                  (hi[2] - lo[2]) * (hi[2] - lo[2]));
+      const Real diag =
+          std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
       mergeCoincidentNodes(_m.mesh, merge_parts, 1e-9 * diag);
     }
     checkElements(_m.mesh);
@@ -211,7 +213,7 @@ void ModelSetup::setupFields()
     _m.nodes.f_contact = VectorView("f_contact", size_t(num_nodes));
   _m.nodes.external_impulse = VectorView("external_impulse", size_t(num_nodes));
   _m.nodes.mass = RealView("node_mass", size_t(num_nodes));
-  _m.nodes.bc = DeviceView<int * [3]>("node_bc", size_t(num_nodes));
+  _m.nodes.bc = DeviceView<int *[3]>("node_bc", size_t(num_nodes));
 
   _m.elems.count = num_elems;
   const size_t ne = size_t(num_elems);
@@ -321,9 +323,10 @@ void ModelSetup::setupNodeSweep()
       not_owned[n] = char(!_m.dd->owned[n]);
     late.declareFlagged("nodes of other ranks", not_owned);
   }
-  _m.sweep = makeNodeSweep(_m.elems, _m.groups, _m.nodes, cornerGather(_m.deck) ? _m.corners.chunks : 1,
-                         late.mask());
-  _m.sweep_nodes = _m.dd ? long(allReduceSum((long long)_m.sweep.early_nodes, _m.comm)) : _m.sweep.early_nodes;
+  _m.sweep = makeNodeSweep(_m.elems, _m.groups, _m.nodes,
+                           cornerGather(_m.deck) ? _m.corners.chunks : 1, late.mask());
+  _m.sweep_nodes =
+      _m.dd ? long(allReduceSum((long long)_m.sweep.early_nodes, _m.comm)) : _m.sweep.early_nodes;
 }
 
 void ModelSetup::setupSets()
@@ -344,9 +347,9 @@ void ModelSetup::setupSets()
   {
     const SetSpec &s = _m.deck.node_sets[i];
     const std::string key = "node_sets[" + std::to_string(i) + "]";
-    std::vector<Index> nodes =
-        s.has_box ? nodesInBox(_m.mesh, s.box_min, s.box_max, tol)
-                  : nodesOfParts(_m.mesh, partsMatching(s.part, key + ".part"));
+    std::vector<Index> nodes = s.has_box
+                                   ? nodesInBox(_m.mesh, s.box_min, s.box_max, tol)
+                                   : nodesOfParts(_m.mesh, partsMatching(s.part, key + ".part"));
     if (!s.has_box)
       unifyNodeSet(nodes);
     checkSetNotEmpty(nodes.size(),
@@ -393,7 +396,8 @@ void ModelSetup::setupBoundaryConditions()
         {
           // 1D: the element's other node fixes the outward direction
           const Index d = _m.host_to_device_element[size_t(f.element)];
-          auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), Kokkos::subview(_m.elems.conn, d, Kokkos::ALL));
+          auto conn = Kokkos::create_mirror_view_and_copy(
+              HostSpace(), Kokkos::subview(_m.elems.conn, d, Kokkos::ALL));
           nodes[1] = conn(0) == f.nodes[0] ? conn(1) : conn(0);
         }
         pface.push_back(nodes);
@@ -437,7 +441,7 @@ void ModelSetup::setupBoundaryConditions()
       h_pf(k, a) = pface[k][size_t(a)];
   Kokkos::deep_copy(_m.bc.pressure_face, h_pf);
   _m.bc.velocity_current = RealView("velocity_bc", _m.bc.velocity_value.size());
-  _m.bc.force_current = DeviceView<Real * [3]>("force_bc_value", _m.bc.force_value.size());
+  _m.bc.force_current = DeviceView<Real *[3]>("force_bc_value", _m.bc.force_value.size());
   _m.bc.pressure_current = RealView("pressure_bc_value", _m.bc.pressure_value.size());
 }
 
@@ -539,14 +543,16 @@ void ModelSetup::setupInitialState()
       });
 
   _m.controls.geometry = _m.deck.geometry;
-  _m.controls.hourglass =
-      _m.deck.hourglass_type == HourglassForm::Stiffness ? HourglassType::Stiffness : HourglassType::Viscous;
+  _m.controls.hourglass = _m.deck.hourglass_type == HourglassForm::Stiffness
+                              ? HourglassType::Stiffness
+                              : HourglassType::Viscous;
   _m.controls.hourglass_coefficient = _m.deck.hourglass_coefficient;
   _m.controls.q_linear = _m.deck.bulk_viscosity_linear;
   _m.controls.q_quadratic = _m.deck.bulk_viscosity_quadratic;
   _m.controls.gather = cornerGather(_m.deck);
 
-  const Real dt_elem = initialElementTimeStep(_m.groups, _m.deck.geometry, _m.nodes, _m.elems, _m.materials);
+  const Real dt_elem =
+      initialElementTimeStep(_m.groups, _m.deck.geometry, _m.nodes, _m.elems, _m.materials);
   if (_m.dd)
   {
     // the lowest failing rank names its element (global id); every rank stops alike

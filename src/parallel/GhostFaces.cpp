@@ -15,7 +15,7 @@ namespace scpdyn
 namespace
 {
 
-constexpr int kFaceNodes = 5;                     ///< 4 face nodes + the 1D back node
+constexpr int kFaceNodes = 5;                  ///< 4 face nodes + the 1D back node
 constexpr int kFaceWords = 6 + kFaceNodes * 5; ///< doubles per face descriptor
 constexpr int kTagCount = 7401, kTagData = 7402, kTagGather = 7403;
 

@@ -33,12 +33,12 @@ namespace scpdyn
 /// \brief A contact face as the exchange sees it.
 struct GhostFaceDesc
 {
-  long key = 0;       ///< global face key: global element * 8 + local face
-  int part = -1;      ///< mesh part
-  int surface = -1;   ///< contact surface (face-BC id)
+  long key = 0;     ///< global face key: global element * 8 + local face
+  int part = -1;    ///< mesh part
+  int surface = -1; ///< contact surface (face-BC id)
   int num_nodes = 0;
-  int rigid = 0;      ///< every node component prescribed (10.1)
-  Real mass = 0;      ///< face mass M_f [kg]
+  int rigid = 0;                     ///< every node component prescribed (10.1)
+  Real mass = 0;                     ///< face mass M_f [kg]
   Index nodes[4] = {-1, -1, -1, -1}; ///< local node id, or ghost slot (>= num_local) on receipt
   /// 1D: the other node of the element behind the point face (orients it), else -1; numbered
   /// like `nodes`
@@ -112,9 +112,9 @@ private:
   std::vector<std::array<int, 3>> _ghost_bc;
   std::vector<int> _neighbours;
   std::vector<Index> _send_offset, _recv_offset; ///< per neighbour into the node lists
-  std::vector<Index> _send_face, _recv_face;       ///< per neighbour, in message order
+  std::vector<Index> _send_face, _recv_face;     ///< per neighbour, in message order
   std::vector<Index> _send_face_offset, _recv_face_offset;
-  std::vector<Index> _send_full, _recv_full;              ///< the rebuild's node lists
+  std::vector<Index> _send_full, _recv_full; ///< the rebuild's node lists
   std::vector<Index> _send_full_offset, _recv_full_offset;
   std::size_t _bytes_restrict = 0;
   IndexView _send_node; ///< local node of each send slot

@@ -144,11 +144,13 @@ std::vector<char> ownedNodes(const LocalDomain &domain)
   std::vector<char> owned(size_t(domain.mesh.numNodes()), 1);
   const SharedNodes &sh = domain.shared;
   for (Index s = 0; s < sh.size(); ++s)
-    owned[size_t(sh.local[size_t(s)])] = sh.ranks[size_t(sh.rank_offsets[size_t(s)])] == domain.rank;
+    owned[size_t(sh.local[size_t(s)])] =
+        sh.ranks[size_t(sh.rank_offsets[size_t(s)])] == domain.rank;
   return owned;
 }
 
-std::vector<HostFace> localFaces(const std::vector<HostFace> &global_faces, const LocalDomain &domain)
+std::vector<HostFace> localFaces(const std::vector<HostFace> &global_faces,
+                                 const LocalDomain &domain)
 {
   std::vector<HostFace> out;
   for (HostFace f : global_faces)

@@ -53,7 +53,8 @@ struct LocalDomain
 /// every global element (elements numbered in part order, e.g. from partitionElements).
 /// Nodes used by no element belong to no rank. Throws std::runtime_error if element_rank has
 /// the wrong size.
-LocalDomain buildLocalDomain(const HostMesh &global, const std::vector<int> &element_rank, int rank);
+LocalDomain buildLocalDomain(const HostMesh &global, const std::vector<int> &element_rank,
+                             int rank);
 
 /// \brief Per local node: 1 if this rank owns it (not shared, or this is the lowest rank holding
 /// it), else 0. Every node has exactly one owner, so sums over owned nodes (kinetic energy,
@@ -63,6 +64,7 @@ std::vector<char> ownedNodes(const LocalDomain &domain);
 /// \brief The faces of `global_faces` whose element is local, in their order, with nodes and
 /// element renumbered to local ids (part and local_face kept). Use it for the external faces:
 /// extractExternalFaces on the local mesh would wrongly call partition-boundary faces external.
-std::vector<HostFace> localFaces(const std::vector<HostFace> &global_faces, const LocalDomain &domain);
+std::vector<HostFace> localFaces(const std::vector<HostFace> &global_faces,
+                                 const LocalDomain &domain);
 
 } // namespace scpdyn

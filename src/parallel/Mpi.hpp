@@ -68,8 +68,9 @@ private:
     // MPI_Init sets PMIX_RANK and OMPI_MCA_ess=singleton, which its child processes inherit.
     const char *ess = std::getenv("OMPI_MCA_ess");
     const bool singleton_parent = ess && std::string(ess) == "singleton";
-    const bool launched = std::getenv("OMPI_COMM_WORLD_SIZE") ||
-                          ((std::getenv("PMIX_RANK") || std::getenv("PMI_RANK")) && !singleton_parent);
+    const bool launched =
+        std::getenv("OMPI_COMM_WORLD_SIZE") ||
+        ((std::getenv("PMIX_RANK") || std::getenv("PMI_RANK")) && !singleton_parent);
     if (launched || std::getenv("OMPI_MCA_orte_tmpdir_base"))
       return;
     const char *tmp = std::getenv("TMPDIR");
@@ -200,7 +201,8 @@ inline long long allReduceSum(long long value, MPI_Comm comm = MPI_COMM_WORLD)
 /// \brief Global bounding box [m]: lo and hi become the minimum and maximum over the ranks
 /// (exact, one message), so every rank derives the same sorting bins from them (step 2, and
 /// contact search cycles once nodes move).
-inline void allReduceBox(std::array<Real, 3> &lo, std::array<Real, 3> &hi, MPI_Comm comm = MPI_COMM_WORLD)
+inline void allReduceBox(std::array<Real, 3> &lo, std::array<Real, 3> &hi,
+                         MPI_Comm comm = MPI_COMM_WORLD)
 {
   if (!mpiActive())
     return;

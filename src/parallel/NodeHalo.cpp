@@ -45,8 +45,8 @@ NodeHalo::NodeHalo(const LocalDomain &domain, MPI_Comm comm)
       const int r = sh.ranks[size_t(k)];
       if (r == _rank)
         continue;
-      const size_t j = size_t(std::lower_bound(_neighbours.begin(), _neighbours.end(), r) -
-                              _neighbours.begin());
+      const size_t j =
+          size_t(std::lower_bound(_neighbours.begin(), _neighbours.end(), r) - _neighbours.begin());
       nodes_of[j].push_back(s);
     }
   _neighbour_offset.assign(nn + 1, 0);
@@ -76,8 +76,8 @@ NodeHalo::NodeHalo(const LocalDomain &domain, MPI_Comm comm)
         self = true;
         continue;
       }
-      const size_t j = size_t(std::lower_bound(_neighbours.begin(), _neighbours.end(), r) -
-                              _neighbours.begin());
+      const size_t j =
+          size_t(std::lower_bound(_neighbours.begin(), _neighbours.end(), r) - _neighbours.begin());
       sum_source.push_back(_neighbour_offset[j] + Index(cursor[j]++));
     }
     holds_self = holds_self && self;

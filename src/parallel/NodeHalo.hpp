@@ -84,7 +84,7 @@ private:
     int ncomp = 0;
     int tag = 0;
     Buffer send, recv;
-    HostBuffer send_host, recv_host; ///< alias the buffers when CommMemSpace is host memory
+    HostBuffer send_host, recv_host;   ///< alias the buffers when CommMemSpace is host memory
     std::vector<MPI_Request> requests; ///< receives first, then sends
     bool in_flight = false;
     const Real *field = nullptr; ///< the field being summed, to catch mismatched begin/end
@@ -102,13 +102,13 @@ private:
   MPI_Comm _comm = MPI_COMM_NULL;
   int _rank = 0;
   Index _num_shared = 0;
-  Index _num_slots = 0;                ///< sum over neighbours of the nodes shared with each
-  std::vector<int> _neighbours;        ///< ascending
+  Index _num_slots = 0;                 ///< sum over neighbours of the nodes shared with each
+  std::vector<int> _neighbours;         ///< ascending
   std::vector<Index> _neighbour_offset; ///< slot range of each neighbour, size + 1
-  IndexView _slot_node;   ///< local node of each message slot
-  IndexView _shared_node; ///< local node of each shared node
-  IndexView _sum_offset;  ///< CRS over shared nodes into _sum_source
-  IndexView _sum_source;  ///< per holder in ascending rank order: slot, or -1 for own value
+  IndexView _slot_node;                 ///< local node of each message slot
+  IndexView _shared_node;               ///< local node of each shared node
+  IndexView _sum_offset;                ///< CRS over shared nodes into _sum_source
+  IndexView _sum_source; ///< per holder in ascending rank order: slot, or -1 for own value
   Channel _vec, _scal;
   std::uint64_t _bytes_sent = 0;
 };

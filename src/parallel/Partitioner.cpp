@@ -113,7 +113,8 @@ void faceEdges(const HostMesh &mesh, int weight, std::vector<Edge> &edges)
       {
         Key k{{{-1, -1, -1, -1}}, element};
         for (int i = 0; i < npf; ++i)
-          k.nodes[size_t(i)] = part.connectivity[size_t(e) * size_t(npe) + size_t(faceLocalNode(part.type, f, i))];
+          k.nodes[size_t(i)] =
+              part.connectivity[size_t(e) * size_t(npe) + size_t(faceLocalNode(part.type, f, i))];
         std::sort(k.nodes.begin(), k.nodes.begin() + npf);
         keys.push_back(k);
       }
@@ -198,11 +199,13 @@ std::vector<std::pair<Index, Index>> jointFacePairs(const HostMesh &mesh,
   return pairs;
 }
 
-std::vector<int> partitionElements(const HostMesh &mesh, const std::vector<HostFace> &external_faces,
-                                   int nparts, const PartitionOptions &options)
+std::vector<int> partitionElements(const HostMesh &mesh,
+                                   const std::vector<HostFace> &external_faces, int nparts,
+                                   const PartitionOptions &options)
 {
   if (nparts < 1)
-    throw std::runtime_error("partitionElements: nparts must be >= 1, got " + std::to_string(nparts));
+    throw std::runtime_error("partitionElements: nparts must be >= 1, got " +
+                             std::to_string(nparts));
   const Index num_elements = mesh.numElements();
   std::vector<int> rank(size_t(num_elements), 0);
   if (nparts == 1 || num_elements == 0)
@@ -218,8 +221,9 @@ std::vector<int> partitionElements(const HostMesh &mesh, const std::vector<HostF
   for (Edge &e : edges)
     if (e.a > e.b)
       std::swap(e.a, e.b);
-  std::sort(edges.begin(), edges.end(),
-            [](const Edge &x, const Edge &y) { return std::tie(x.a, x.b, y.w) < std::tie(y.a, y.b, x.w); });
+  std::sort(edges.begin(), edges.end(), [](const Edge &x, const Edge &y) {
+    return std::tie(x.a, x.b, y.w) < std::tie(y.a, y.b, x.w);
+  });
   edges.erase(std::unique(edges.begin(), edges.end(),
                           [](const Edge &x, const Edge &y) { return x.a == y.a && x.b == y.b; }),
               edges.end());
@@ -246,7 +250,7 @@ std::vector<int> partitionElements(const HostMesh &mesh, const std::vector<HostF
   {
     // no adjacency at all (e.g. separate 1D points): contiguous equal slices
     for (Index e = 0; e < num_elements; ++e)
-      rank[size_t(e)] = int((long long)(e) * nparts / num_elements);
+      rank[size_t(e)] = int((long long)(e)*nparts / num_elements);
     return rank;
   }
 
@@ -257,9 +261,9 @@ std::vector<int> partitionElements(const HostMesh &mesh, const std::vector<HostF
   options_metis[METIS_OPTION_NUMBERING] = 0;
   idx_t nvtxs = num_elements, ncon = 1, np = nparts, objval = 0;
   std::vector<idx_t> part(size_t(num_elements), 0);
-  const int status = METIS_PartGraphKway(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr, nullptr,
-                                         adjwgt.data(), &np, nullptr, nullptr, options_metis, &objval,
-                                         part.data());
+  const int status = METIS_PartGraphKway(&nvtxs, &ncon, xadj.data(), adjncy.data(), nullptr,
+                                         nullptr, adjwgt.data(), &np, nullptr, nullptr,
+                                         options_metis, &objval, part.data());
   if (status != METIS_OK)
     throw std::runtime_error("partitionElements: METIS_PartGraphKway failed with status " +
                              std::to_string(status));
@@ -268,8 +272,9 @@ std::vector<int> partitionElements(const HostMesh &mesh, const std::vector<HostF
   return rank;
 }
 
-std::vector<int> partitionElementsOnRoot(const HostMesh &mesh, const std::vector<HostFace> &external_faces,
-                                         MPI_Comm comm, const PartitionOptions &options)
+std::vector<int> partitionElementsOnRoot(const HostMesh &mesh,
+                                         const std::vector<HostFace> &external_faces, MPI_Comm comm,
+                                         const PartitionOptions &options)
 {
   int rank = 0, size = 1;
   MPI_Comm_rank(comm, &rank);

@@ -30,8 +30,8 @@ struct PartitionOptions
   /// node from the centroid x 2.
   Real joint_overlap = 0.5;
   Real joint_gap = 0.1;
-  int seed = 7;         ///< METIS_OPTION_SEED: every rank computes the same partition
-  int ufactor = 30;     ///< METIS_OPTION_UFACTOR: allowed imbalance 1 + ufactor/1000
+  int seed = 7;     ///< METIS_OPTION_SEED: every rank computes the same partition
+  int ufactor = 30; ///< METIS_OPTION_UFACTOR: allowed imbalance 1 + ufactor/1000
 };
 
 /// \brief Rank (0..nparts-1) of each mesh element, elements numbered in part order as in
@@ -39,21 +39,23 @@ struct PartitionOptions
 /// pure function of the inputs (fixed METIS seed), so every rank may compute it from the
 /// same deck; nparts = 1 gives all zeros without calling METIS. Throws std::runtime_error if
 /// METIS fails or nparts < 1.
-std::vector<int> partitionElements(const HostMesh &mesh, const std::vector<HostFace> &external_faces,
-                                   int nparts, const PartitionOptions &options = PartitionOptions());
+std::vector<int> partitionElements(const HostMesh &mesh,
+                                   const std::vector<HostFace> &external_faces, int nparts,
+                                   const PartitionOptions &options = PartitionOptions());
 
 /// \brief partitionElements for the ranks of `comm`, computed on rank 0 only and broadcast
 /// (collective). Same result as every rank calling partitionElements(..., size), without
 /// running METIS size times on the same node; prefer it in the solver set-up.
-std::vector<int> partitionElementsOnRoot(const HostMesh &mesh, const std::vector<HostFace> &external_faces,
+std::vector<int> partitionElementsOnRoot(const HostMesh &mesh,
+                                         const std::vector<HostFace> &external_faces,
                                          MPI_Comm comm = MPI_COMM_WORLD,
                                          const PartitionOptions &options = PartitionOptions());
 
 /// \brief Pairs (a, b), a < b, of indices into `external_faces` that are joint neighbours in
 /// the sense of PartitionOptions (different parts, facing each other, overlapping, nearly
 /// closed). Sorted. Used for the joint edges and to measure how many joints a partition cuts.
-std::vector<std::pair<Index, Index>> jointFacePairs(const HostMesh &mesh,
-                                                    const std::vector<HostFace> &external_faces,
-                                                    const PartitionOptions &options = PartitionOptions());
+std::vector<std::pair<Index, Index>>
+jointFacePairs(const HostMesh &mesh, const std::vector<HostFace> &external_faces,
+               const PartitionOptions &options = PartitionOptions());
 
 } // namespace scpdyn

@@ -30,10 +30,7 @@ TEST(TimeFunctions, LinearBetweenPointsConstantBeyondTheEnds)
   EXPECT_EQ(evaluate(f, 10.0), 1.0);
 }
 
-TEST(TimeFunctions, WithoutPointsTheValueIsOne)
-{
-  EXPECT_EQ(evaluate(TimeFunction{}, 5.0), 1.0);
-}
+TEST(TimeFunctions, WithoutPointsTheValueIsOne) { EXPECT_EQ(evaluate(TimeFunction{}, 5.0), 1.0); }
 
 TEST(TimeFunctions, FindByNameNoneOrAnInputErrorNamingTheKey)
 {

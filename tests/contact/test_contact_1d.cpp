@@ -27,8 +27,7 @@ std::string t1Deck(int dim, const std::string &surface, const std::string &numer
   auto v = [&](const std::string &x, const std::string &y) {
     return "[" + x + (d1 ? "" : ", " + y) + "]";
   };
-  std::string d = "dimension: " + std::to_string(dim) + "\n" +
-                  "time: " + time + "\n" + numerics +
+  std::string d = "dimension: " + std::to_string(dim) + "\n" + "time: " + time + "\n" + numerics +
                   "materials:\n  - {name: steel, model: elastic, density: 7850, youngs_modulus: "
                   "200.0e9, poisson_ratio: 0.3}\n"
                   "parts:\n"
@@ -44,8 +43,11 @@ std::string t1Deck(int dim, const std::string &surface, const std::string &numer
          "boundary_conditions:\n  - {type: velocity, node_set: all, component: y, value: 0.0}\n";
   d += "gauges:\n  - {name: target_mid, point: " + v("0.1505", "0.0005") +
        ", kind: element, quantities: [sxx]}\n"
-       "  - {name: interface, point: " + v("0.1", "0.0") + ", kind: node, quantities: [vx]}\n"
-       "contact:\n  search_interval: 1\n  surfaces:\n    - " + surface + "\n";
+       "  - {name: interface, point: " +
+       v("0.1", "0.0") +
+       ", kind: node, quantities: [vx]}\n"
+       "contact:\n  search_interval: 1\n  surfaces:\n    - " +
+       surface + "\n";
   return d;
 }
 
@@ -63,11 +65,12 @@ std::string columnDeck(int dim, const std::string &surface, const std::string &t
                   "numerics: {bulk_viscosity: {linear: 0.0, quadratic: 0.0}}\n"
                   "materials:\n  - {name: ls, model: elastic, density: 2600, youngs_modulus: "
                   "43.875e9, poisson_ratio: 0.25}\nparts:\n"
-                  "  - {name: left, material: ls, mesh: {type: block, element: " + el +
-                  ", elements: " + v("50", "1") + ", origin: " + v("0.0", "0.0") +
-                  ", size: " + v("0.05", "0.001") + "}}\n"
-                  "  - {name: right, material: ls, mesh: {type: block, element: " + el +
-                  ", elements: " + v("50", "1") + ", origin: " + v("0.05", "0.0") +
+                  "  - {name: left, material: ls, mesh: {type: block, element: " +
+                  el + ", elements: " + v("50", "1") + ", origin: " + v("0.0", "0.0") +
+                  ", size: " + v("0.05", "0.001") +
+                  "}}\n"
+                  "  - {name: right, material: ls, mesh: {type: block, element: " +
+                  el + ", elements: " + v("50", "1") + ", origin: " + v("0.05", "0.0") +
                   ", size: " + v("0.05", "0.001") + "}}\n";
   if (!d1)
     d += "node_sets:\n  - {name: all, box: {min: [-1, -1], max: [1, 1]}}\n";
@@ -79,8 +82,11 @@ std::string columnDeck(int dim, const std::string &surface, const std::string &t
     d += "  - {type: velocity, node_set: all, component: y, value: 0}\n";
   d += "gauges:\n  - {name: right_first, point: " + v("0.0505", "0.0005") +
        ", kind: element, quantities: [sxx]}\n"
-       "  - {name: interface, point: " + v("0.05", "0.0") + ", kind: node, quantities: [vx]}\n"
-       "contact:\n  search_interval: 1\n  surfaces:\n    - " + surface + "\n";
+       "  - {name: interface, point: " +
+       v("0.05", "0.0") +
+       ", kind: node, quantities: [vx]}\n"
+       "contact:\n  search_interval: 1\n  surfaces:\n    - " +
+       surface + "\n";
   return d;
 }
 
@@ -139,7 +145,7 @@ double plateau(const Histories &h) { return -windowMean(h.t, h.sxx, 12.8e-6, 21.
 // x_poc = midpoint, u0 = (c1 - c2).n = +1 um (positive closure = overlap, docs/theory.md 4.8).
 TEST(Contact1D, PointFaceGeometry)
 {
-  const Real x1[2][3] = {{1.0e-3, 0, 0}, {0, 0, 0}};           // face node, element's other node
+  const Real x1[2][3] = {{1.0e-3, 0, 0}, {0, 0, 0}}; // face node, element's other node
   const Real x2[2][3] = {{0.999e-3, 0, 0}, {2.0e-3, 0, 0}};
   const CpGeometry g = computeCommonPlane<1>(x1, 1, x2, 1, false);
   ASSERT_TRUE(g.valid);
@@ -179,8 +185,8 @@ TEST(Contact1D, PointFaceGeometry)
 // (the plastic collision of the two face masses, T1/T9).
 TEST(Contact1D, T1aSlideLine)
 {
-  const Histories h = runCycles(t1Deck(1, "{name: joint, part: \"*\", option: slide_line}"),
-                                "c1d_t1_slide");
+  const Histories h =
+      runCycles(t1Deck(1, "{name: joint, part: \"*\", option: slide_line}"), "c1d_t1_slide");
   const double p = plateau(h);
   const double vi = windowMean(h.t, h.vx, 2e-6, 30e-6);
   std::printf("[ measured ] 1D T1a slide line: plateau %.6e (%+.2e), v_interface %.7f, "
@@ -211,8 +217,8 @@ TEST(Contact1D, T1aStickyAndImplicitJoint)
     const double vi = windowMean(h->t, h->vx, 2e-6, 30e-6);
     std::printf("[ measured ] 1D T1a %s: plateau %.6e (%+.2e), v_interface %.7f, momentum %.1e, "
                 "balance <= %.1e\n",
-                sticky ? "sticky" : "implicit joint a = 1 um", p, p / kSteelImpedanceHalfV - 1,
-                vi, h->momentum_drift, h->max_balance);
+                sticky ? "sticky" : "implicit joint a = 1 um", p, p / kSteelImpedanceHalfV - 1, vi,
+                h->momentum_drift, h->max_balance);
     EXPECT_NEAR(p / kSteelImpedanceHalfV, 1.0, 0.01) << p;
     // the joint's closure (about 0.8 a = 0.8 um at the plateau) takes a few cycles, during which
     // the interface nodes lag: 1 % (as the 2D test)
@@ -230,13 +236,18 @@ TEST(Contact1D, T6aTiedColumnIsExact)
 {
   auto deck = [](bool tied) {
     const std::string merge = tied ? "false" : "true";
-    std::string d = R"(dimension: 1
+    std::string d =
+        R"(dimension: 1
 time: {end: 30.0e-6, courant: 0.5}
 materials:
   - {name: ls, model: elastic, density: 2600, youngs_modulus: 43.875e9, poisson_ratio: 0.25}
 parts:
-  - {name: left, material: ls, merge_nodes: )" + merge + R"(, mesh: {type: block, element: line2, elements: [50], origin: [0.0], size: [0.05]}}
-  - {name: right, material: ls, merge_nodes: )" + merge + R"(, mesh: {type: block, element: line2, elements: [50], origin: [0.05], size: [0.05]}}
+  - {name: left, material: ls, merge_nodes: )" +
+        merge +
+        R"(, mesh: {type: block, element: line2, elements: [50], origin: [0.0], size: [0.05]}}
+  - {name: right, material: ls, merge_nodes: )" +
+        merge +
+        R"(, mesh: {type: block, element: line2, elements: [50], origin: [0.05], size: [0.05]}}
 face_sets:
   - {name: left_end, box: {min: [0], max: [0]}}
 functions:
@@ -245,7 +256,8 @@ boundary_conditions:
   - {type: pressure, face_set: left_end, value: 10.0e6, function: pulse}
 )";
     if (tied)
-      d += "contact:\n  search_interval: once\n  surfaces:\n    - {name: tie, part: \"*\", option: sticky}\n";
+      d += "contact:\n  search_interval: once\n  surfaces:\n    - {name: tie, part: \"*\", option: "
+           "sticky}\n";
     return d;
   };
   Solver merged(deckFromText(deck(false), "c1d_t6a_merged"));
@@ -298,8 +310,9 @@ TEST(Contact1D, SameDeckIn1DAnd2D)
     const std::string surface = "{name: joint, part: \"*\", distribution: poc, " + c.surface + "}";
     auto deck = [&](int dim) {
       // dt_max: S = 0.44 of the element step (steel h/c = 171 ns, limestone 243 ns)
-      return c.column ? columnDeck(dim, surface, "{end: 30.0e-6, courant: 0.5, dt_max: 1.07e-7}")
-                      : t1Deck(dim, surface, numerics, "{end: 40.0e-6, courant: 0.5, dt_max: 7.5e-8}");
+      return c.column
+                 ? columnDeck(dim, surface, "{end: 30.0e-6, courant: 0.5, dt_max: 1.07e-7}")
+                 : t1Deck(dim, surface, numerics, "{end: 40.0e-6, courant: 0.5, dt_max: 7.5e-8}");
     };
     const Histories a = runCycles(deck(1), "c1d_same_1d_" + c.name);
     const Histories b = runCycles(deck(2), "c1d_same_2d_" + c.name);
@@ -391,7 +404,8 @@ GaugeHistory runJointedWave(double a_mm, double gap, const std::string &name)
   while (s.time() < s.deck().end_time)
   {
     s.cycle();
-    auto v = Kokkos::create_mirror_view_and_copy(HostSpace(), Kokkos::subview(s.nodes().v, gauge, 0));
+    auto v =
+        Kokkos::create_mirror_view_and_copy(HostSpace(), Kokkos::subview(s.nodes().v, gauge, 0));
     if (g.arrival < 0 && v() > 100)
       g.arrival = s.time();
     g.peak = std::max(g.peak, double(v()));
@@ -432,7 +446,8 @@ TEST(Contact1D, JointedWaveFig2)
   const double gap = 2e-4, v0 = 1000;
   const GaugeHistory solid = runJointedWave(0, 0, "c1d_fig2_solid");
   std::printf("[ measured ] 1D solid bar: arrival %.4f us, peak %.3f m/s, %ld cycles, |balance| "
-              "<= %.1e\n", solid.arrival * 1e6, solid.peak, solid.cycles, solid.balance);
+              "<= %.1e\n",
+              solid.arrival * 1e6, solid.peak, solid.cycles, solid.balance);
   EXPECT_NEAR(solid.arrival, 14.78e-6, 0.5e-6);
   EXPECT_NEAR(solid.peak / 495.25, 1.0, 0.04);
   struct Case

@@ -124,9 +124,10 @@ TEST(ContactDeck, ErrorsNameTheKey)
   EXPECT_NE(errorOf("contact:\n  surfaces:\n    - {name: j, part: a, E0: 5.0e8}\n")
                 .find("contact.surfaces[0].E0 (line 12): is in GPa"),
             std::string::npos);
-  EXPECT_NE(errorOf("contact:\n  search_interval: sometimes\n  surfaces:\n    - {name: j, part: a}\n")
-                .find("contact.search_interval (line 11): must be 'once' or an integer"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf("contact:\n  search_interval: sometimes\n  surfaces:\n    - {name: j, part: a}\n")
+          .find("contact.search_interval (line 11): must be 'once' or an integer"),
+      std::string::npos);
   EXPECT_NE(errorOf("contact:\n  surfaces:\n    - {name: j, part: a, face_set: right_of_a}\n")
                 .find("contact.surfaces[0]"),
             std::string::npos);
@@ -135,9 +136,9 @@ TEST(ContactDeck, ErrorsNameTheKey)
 TEST(ContactDeck, FacesOfSurfacesAndMasses)
 {
   // two quads of 1 cm: every external face is a contact face; face mass = element mass / 2
-  const Deck d = deckFromText(std::string(kBase) +
-                                  "contact:\n  surfaces:\n    - {name: j, part: \"*\", option: sticky}\n",
-                              "faces");
+  const Deck d = deckFromText(
+      std::string(kBase) + "contact:\n  surfaces:\n    - {name: j, part: \"*\", option: sticky}\n",
+      "faces");
   Solver s(d);
   const ContactSystem *c = s.contact();
   ASSERT_NE(c, nullptr);

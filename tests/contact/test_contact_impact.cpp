@@ -41,7 +41,8 @@ gauges:
 contact:
   search_interval: 1
   surfaces:
-    - )" + surface + "\n";
+    - )" +
+         surface + "\n";
 }
 
 struct T1Result

@@ -24,7 +24,8 @@ std::string inclineDeck(double theta_deg, double phi_deg)
   d << R"(dimension: 2
 time: {end: 0.5, courant: 0.5}
 numerics: {hourglass: {type: stiffness, coefficient: 0.05}}
-gravity: [)" << g * std::sin(t) << ", " << -g * std::cos(t) << R"(]
+gravity: [)"
+    << g * std::sin(t) << ", " << -g * std::cos(t) << R"(]
 materials:
   - {name: ls, model: elastic, density: 2600, youngs_modulus: 43.875e9, poisson_ratio: 0.25}
 parts:

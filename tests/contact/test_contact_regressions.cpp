@@ -246,7 +246,7 @@ TEST(ContactRegression, DivergenceTestUnits)
   EXPECT_EQ(checkCp(P, s, F, true, true, 1, 1, 1), CpCheckNonFinite);
   // energy: the joints' net work may lag their stored energy (work booked a step late) but may
   // not give the mesh more than the most they ever took in or held
-  EXPECT_FALSE(contactCreatedEnergy(0, 0, 5, 0));       // first loaded step, nothing booked yet
+  EXPECT_FALSE(contactCreatedEnergy(0, 0, 5, 0));        // first loaded step, nothing booked yet
   EXPECT_FALSE(contactCreatedEnergy(-90, 100, 50, 1e3)); // within the peak work
   EXPECT_TRUE(contactCreatedEnergy(-110, 100, 50, 1e3));
   EXPECT_TRUE(contactCreatedEnergy(-60, 10, 50, 1e3));   // beyond the peak stored energy
@@ -284,8 +284,8 @@ TEST(ContactRegression, VanishingCpClosureIsNotDivergence)
   CpState s;
   s.u = 3 * P.a;
   const Real F[3] = {0, 1, 0};
-  EXPECT_EQ(checkCp(P, s, F, true, true, 0.05, 1, 2), CpCheckOk);      // 5 % of the face
-  EXPECT_EQ(checkCp(P, s, F, true, true, 0.5, 1, 2), CpCheckClosure);  // half the face
+  EXPECT_EQ(checkCp(P, s, F, true, true, 0.05, 1, 2), CpCheckOk);     // 5 % of the face
+  EXPECT_EQ(checkCp(P, s, F, true, true, 0.5, 1, 2), CpCheckClosure); // half the face
   const Real Fnan[3] = {0, std::numeric_limits<Real>::quiet_NaN(), 0};
   EXPECT_EQ(checkCp(P, s, Fnan, true, true, 0.05, 1, 2), CpCheckNonFinite);
 }
@@ -296,8 +296,8 @@ TEST(ContactRegression, VanishingCpClosureIsNotDivergence)
 // here; to 10 us in 2.5 s on one thread, balance 3e-4) with a closed energy balance.
 TEST(ContactRegression, SlidingApartCornerRuns)
 {
-  std::string yaml = readText(std::string(SCPDYN_SOURCE_DIR) +
-                              "/inputs/paper/fig7_explicit_consistent.yaml");
+  std::string yaml =
+      readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/paper/fig7_explicit_consistent.yaml");
   yaml = replaced(yaml, "elements: [17, 17], origin: [0.0, 0.01002]",
                   "elements: [11, 11], origin: [0.0, 0.01002]");
   yaml = replaced(yaml, "elements: [17, 17], origin: [0.0, 0.0]",

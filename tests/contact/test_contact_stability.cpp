@@ -103,7 +103,8 @@ TEST(ContactStability, T10bImplicitStableAndExplicitSmallStepAgrees)
   std::string tied = readText(paperDeck("fig5_implicit_S0.5"));
   tied = replaced(tied, "option: implicit", "option: sticky");
   const std::string d5 = runDeck(tied, "fig5_tied_S0.5");
-  const std::string d05 = runDeck(replaced(tied, "courant: 0.5", "courant: 0.05"), "fig5_tied_S0.05");
+  const std::string d05 =
+      runDeck(replaced(tied, "courant: 0.5", "courant: 0.05"), "fig5_tied_S0.05");
   std::vector<double> t5, p5, t05, p05;
   interfacePressure(d5, t5, p5);
   interfacePressure(d05, t05, p05);

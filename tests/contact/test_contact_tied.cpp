@@ -41,7 +41,8 @@ boundary_conditions:
 )";
   d = replaced(replaced(d, "MERGE", tied ? "false" : "true"), "MERGE", tied ? "false" : "true");
   if (tied)
-    d += "contact:\n  search_interval: once\n  surfaces:\n    - {name: tie, part: \"*\", option: sticky}\n";
+    d += "contact:\n  search_interval: once\n  surfaces:\n    - {name: tie, part: \"*\", option: "
+         "sticky}\n";
   return d;
 }
 
@@ -52,12 +53,14 @@ std::string wallDeck(bool tied, double courant)
   // both twins with stiffness hourglass control: the face-average ties leave the relative
   // zigzag mode of two coincident faces free, and with viscous control the one-point quads
   // hardly resist it, so it rings after the pulse (measured: late-window error 6x the early one)
-  d = replaced(d, "output:", "numerics: {hourglass: {type: stiffness, coefficient: 0.05}}\noutput:");
+  d = replaced(d,
+               "output:", "numerics: {hourglass: {type: stiffness, coefficient: 0.05}}\noutput:");
   if (tied)
   {
     // the same wall, h = 2.5 mm, as 8 courses of 25 x 10 mm bricks, each its own part
-    d = replaced(d, "mesh: {type: block, element: quad4, elements: [80, 32], origin: [0.0, 0.0], "
-                    "size: [0.2, 0.08]}",
+    d = replaced(d,
+                 "mesh: {type: block, element: quad4, elements: [80, 32], origin: [0.0, 0.0], "
+                 "size: [0.2, 0.08]}",
                  "mesh: {type: brick_wall, element: quad4, elements: [10, 4], origin: [0.0, 0.0], "
                  "brick_size: [0.025, 0.01], count: [8, 8], stagger: 0.5}");
     d += "\ncontact:\n  search_interval: once\n  surfaces:\n"
@@ -106,9 +109,10 @@ TEST(ContactTied, T6dStaggeredWallMatchesOneMesh)
       // the run, stays inside the same 2 % (measured <= 1.7 %). It does grow against the first
       // 40 us (ratio 2-4 per gauge): the face-average ties leave the relative zigzag mode of two
       // coincident faces free and it rings after the pulse (docs/theory.md).
-      const double ref = std::sqrt(meanSquareDifference(r["time"], std::vector<double>(kv.second.size(), 0.0),
-                                                        r["time"], kv.second, 0, 60e-6));
-      const double late = meanSquareDifference(a["time"], a[kv.first], r["time"], kv.second, 40e-6, 60e-6);
+      const double ref = std::sqrt(meanSquareDifference(
+          r["time"], std::vector<double>(kv.second.size(), 0.0), r["time"], kv.second, 0, 60e-6));
+      const double late =
+          meanSquareDifference(a["time"], a[kv.first], r["time"], kv.second, 40e-6, 60e-6);
       EXPECT_LT(std::sqrt(late) / ref, 0.02) << kv.first;
       RecordProperty(tag + "_" + kv.first + "_late", sci(std::sqrt(late) / ref));
       RecordProperty(tag + "_" + kv.first + "_E2", sci(e2));
@@ -119,7 +123,8 @@ TEST(ContactTied, T6dStaggeredWallMatchesOneMesh)
       worst = std::max(worst, std::fabs(e));
     EXPECT_LT(worst, 0.01);
     RecordProperty(tag + "_balance", sci(worst));
-    RecordProperty(tag + "_dissipation_rel", sci(h["contact_dissipation"].back() / h["external_work"].back()));
+    RecordProperty(tag + "_dissipation_rel",
+                   sci(h["contact_dissipation"].back() / h["external_work"].back()));
     // the ties take out (almost) nothing: the tied wall is elastic like the one mesh
     EXPECT_LT(std::fabs(h["contact_dissipation"].back()), 0.01 * h["external_work"].back());
   }

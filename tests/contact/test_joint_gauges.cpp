@@ -27,10 +27,11 @@ TEST(JointGauge, FollowsTheInterfaceAndTheJointLaw)
   // at the centre of the interface; the gauge rides on the node nearest the point, so it stays
   // on the joint while the interface moves at ~500 m/s (0.5 mm/us, the default radius is half
   // a face: 0.5 mm)
-  const std::string dir = runDeck(
-      fig5WithJointGauge("  - {name: j, point: [0.015, 0.0075], kind: joint, quantities: "
-                         "[normal_stress, shear_stress, normal_force, area, closure, slip, count]}\n"),
-      "joint_gauge_fig5");
+  const std::string dir =
+      runDeck(fig5WithJointGauge(
+                  "  - {name: j, point: [0.015, 0.0075], kind: joint, quantities: "
+                  "[normal_stress, shear_stress, normal_force, area, closure, slip, count]}\n"),
+              "joint_gauge_fig5");
   auto g = readCsv(dir + "/gauges.csv");
   const auto &t = g["time"];
   const auto &sn = g["j:normal_stress"], &u = g["j:closure"], &n = g["j:count"];

@@ -137,8 +137,7 @@ TEST(JointNormal, HysteresisEnergy)
       const Real dt = 1e-9, V = sm * p.a / N / dt;
       CpState s = initialCpState(0, kZ, 1.0);
       Real D = 0, W = 0;
-      auto step = [&](Real Vn)
-      {
+      auto step = [&](Real Vn) {
         const CpStepResult r = implicit ? updateImplicit(p, s, kin(Vn, 1.0, dt))
                                         : updateExplicit(p, s, kin(Vn, 1.0, dt));
         D += r.dD, W += r.dW;

@@ -241,8 +241,7 @@ TEST(JointShear, RigidRotationObjectivity)
   for (int c = 0; c < 3; ++c)
   {
     const bool twod = c == 2;
-    auto geom = [&](Real th)
-    {
+    auto geom = [&](Real th) {
       Real y1[4][3], y2[4][3];
       const int nn = twod ? 2 : 4;
       for (int i = 0; i < nn; ++i)

@@ -111,11 +111,14 @@ TEST(Cli, OneAndTwoThreadsAgree)
   // differ by round-off only: 1e-10 of each gauge's largest magnitude
   const std::string text =
       test::readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/wall_pulse_2d.yaml");
-  const std::string deck = test::writeWorkFile("wall_atomic.yaml", text + "numerics: {scatter: atomic}\n");
+  const std::string deck =
+      test::writeWorkFile("wall_atomic.yaml", text + "numerics: {scatter: atomic}\n");
   const std::string o1 = std::string(SCPDYN_TEST_WORKDIR) + "/threads1";
   const std::string o2 = std::string(SCPDYN_TEST_WORKDIR) + "/threads2";
-  ASSERT_EQ(test::runBinary(deck + " -o " + o1, nullptr, "OMP_NUM_THREADS=1 OMP_PROC_BIND=false"), 0);
-  ASSERT_EQ(test::runBinary(deck + " -o " + o2, nullptr, "OMP_NUM_THREADS=2 OMP_PROC_BIND=false"), 0);
+  ASSERT_EQ(test::runBinary(deck + " -o " + o1, nullptr, "OMP_NUM_THREADS=1 OMP_PROC_BIND=false"),
+            0);
+  ASSERT_EQ(test::runBinary(deck + " -o " + o2, nullptr, "OMP_NUM_THREADS=2 OMP_PROC_BIND=false"),
+            0);
   auto g1 = test::readCsv(o1 + "/gauges.csv"), g2 = test::readCsv(o2 + "/gauges.csv");
   ASSERT_EQ(g1.size(), g2.size());
   ASSERT_GT(g1.size(), 4u);
@@ -143,8 +146,10 @@ TEST(Cli, GatherScatterIsBitwiseThreadIndependent)
   const std::string deck = test::writeWorkFile("wall_gather.yaml", text);
   const std::string o1 = std::string(SCPDYN_TEST_WORKDIR) + "/gather1";
   const std::string o2 = std::string(SCPDYN_TEST_WORKDIR) + "/gather2";
-  ASSERT_EQ(test::runBinary(deck + " -o " + o1, nullptr, "OMP_NUM_THREADS=1 OMP_PROC_BIND=false"), 0);
-  ASSERT_EQ(test::runBinary(deck + " -o " + o2, nullptr, "OMP_NUM_THREADS=2 OMP_PROC_BIND=false"), 0);
+  ASSERT_EQ(test::runBinary(deck + " -o " + o1, nullptr, "OMP_NUM_THREADS=1 OMP_PROC_BIND=false"),
+            0);
+  ASSERT_EQ(test::runBinary(deck + " -o " + o2, nullptr, "OMP_NUM_THREADS=2 OMP_PROC_BIND=false"),
+            0);
   auto g1 = test::readCsv(o1 + "/gauges.csv"), g2 = test::readCsv(o2 + "/gauges.csv");
   for (const auto &kv : g1)
     EXPECT_EQ(kv.second, g2[kv.first]) << kv.first;

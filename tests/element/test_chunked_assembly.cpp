@@ -71,8 +71,7 @@ TEST(ChunkedAssembly, SameBitsForEveryChunkCountAndSharedNodesAreThoseTwoChunksT
   StepResult one;
   for (int chunks : {1, 2, 3, 7})
   {
-    const NodeCorners corners =
-        makeNodeCorners(s.elements(), s.groups(), s.nodes().count, chunks);
+    const NodeCorners corners = makeNodeCorners(s.elements(), s.groups(), s.nodes().count, chunks);
     // the shared nodes, found here by brute force: touched by elements of two chunks
     std::vector<std::set<int>> touched(size_t(s.nodes().count));
     int chunk = 0;

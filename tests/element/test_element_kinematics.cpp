@@ -211,7 +211,8 @@ void checkHourglass(const Real ref[][3])
   for (int n = 0; n < N; ++n)
     for (int i = 0; i < 3; ++i)
       v[n][i] = i < D ? 1.0 + 2 * x[n][0] - 3 * x[n][1] + (D == 3 ? 0.5 * x[n][2] : 0) : 0;
-  const Real p = hourglassForces<T>(x, v, B, V, hourglassAreaScale<T>(V), 1000, 5000, HourglassType::Viscous, 0.1, 1e-6, Q, f);
+  const Real p = hourglassForces<T>(x, v, B, V, hourglassAreaScale<T>(V), 1000, 5000,
+                                    HourglassType::Viscous, 0.1, 1e-6, Q, f);
   EXPECT_NEAR(p, 0, 1e-6);
   for (int n = 0; n < N; ++n)
     for (int i = 0; i < D; ++i)
@@ -219,7 +220,8 @@ void checkHourglass(const Real ref[][3])
   for (int n = 0; n < N; ++n)
     for (int i = 0; i < 3; ++i)
       v[n][i] = i == 0 ? hourglassBase<T>(0, n) : 0;
-  const Real p2 = hourglassForces<T>(x, v, B, V, hourglassAreaScale<T>(V), 1000, 5000, HourglassType::Viscous, 0.1, 1e-6, Q, f);
+  const Real p2 = hourglassForces<T>(x, v, B, V, hourglassAreaScale<T>(V), 1000, 5000,
+                                     HourglassType::Viscous, 0.1, 1e-6, Q, f);
   EXPECT_GT(p2, 0); // the mode is damped: positive dissipation
 }
 

@@ -162,8 +162,8 @@ void expectSameDeck(const Deck &a, const Deck &b)
     EXPECT_EQ(p.mesh.stagger, q.mesh.stagger);
     EXPECT_EQ(p.mesh.file, q.mesh.file);
   }
-  for (auto sets : {std::make_pair(&a.node_sets, &b.node_sets),
-                    std::make_pair(&a.face_sets, &b.face_sets)})
+  for (auto sets :
+       {std::make_pair(&a.node_sets, &b.node_sets), std::make_pair(&a.face_sets, &b.face_sets)})
   {
     ASSERT_EQ(sets.first->size(), sets.second->size());
     for (std::size_t i = 0; i < sets.first->size(); ++i)
@@ -386,8 +386,9 @@ TEST(DeckParser, MissingAndEmptyFiles)
     EXPECT_NE(std::string(e.what()).find("no_such_deck.yaml: <document>: cannot read the deck"),
               std::string::npos);
   }
-  EXPECT_NE(errorOf("   \n# only a comment\n").find("deck.yaml: <document> (line 1): the deck "
-                                                      "is empty"),
+  EXPECT_NE(errorOf("   \n# only a comment\n")
+                .find("deck.yaml: <document> (line 1): the deck "
+                      "is empty"),
             std::string::npos);
   EXPECT_NE(errorOf("[1, 2]").find("<document> (line 1): expected a mapping"), std::string::npos);
 }

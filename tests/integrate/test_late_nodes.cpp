@@ -37,7 +37,7 @@ Index writtenLate(Solver &s, const LateNodes &late, std::string *what)
 {
   const NodeFields &n = s.nodes();
   BoundaryConditions bc = s.boundaryConditions(); // its Views are the solver's
-  updateLoadValues(bc, s.time() + 0.5 * s.dt()); // step 10's values of the nodal forces
+  updateLoadValues(bc, s.time() + 0.5 * s.dt());  // step 10's values of the nodal forces
   NodeSweep sweep = makeNodeSweep(s.elements(), s.groups(), n, 1, late.mask());
   const Real *g = s.deck().gravity.data();
   sweep.node = nodeIntegrator(n, bc.velocity_current, s.dt(), IndexView(), g);

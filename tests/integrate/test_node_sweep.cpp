@@ -168,7 +168,8 @@ void expectSameCycleEnd(const char *deck, const char *name)
   for (bool loads : {false, true})
     for (int chunks : {1, 2, 3, 7})
     {
-      const NodeCorners corners = makeNodeCorners(s.elements(), s.groups(), s.nodes().count, chunks);
+      const NodeCorners corners =
+          makeNodeCorners(s.elements(), s.groups(), s.nodes().count, chunks);
       const CycleEnd apart = runSteps(s, corners, NodeSweep(), loads);
       const NodeSweep sweep = makeNodeSweep(s.elements(), s.groups(), s.nodes(), chunks, late);
       const CycleEnd fused = runSteps(s, corners, sweep, loads);

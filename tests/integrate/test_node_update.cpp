@@ -38,7 +38,7 @@ NodeFields randomNodes(std::mt19937 &rng)
   n.f_ext = VectorView("f_ext", c);
   n.external_impulse = VectorView("impulse", c);
   n.mass = RealView("mass", c);
-  n.bc = DeviceView<int * [3]>("bc", c);
+  n.bc = DeviceView<int *[3]>("bc", c);
   auto x = Kokkos::create_mirror_view(n.x), v = Kokkos::create_mirror_view(n.v);
   auto f = Kokkos::create_mirror_view(n.f_int);
   auto m = Kokkos::create_mirror_view(n.mass);
@@ -99,8 +99,8 @@ TEST(NodeUpdate, WithoutLoadsTheSameBitsAsTheGeneralPathWithZeroExternalForce)
       const Real zero_g[3] = {0, 0, 0};
       for (int step = 0; step < 3; ++step)
       {
-        zeroForces(general, zero_g, true); // f_ext = m g = 0
-        zeroForces(lean, zero_g, false);   // f_int (shared by both) = 0
+        zeroForces(general, zero_g, true);                        // f_ext = m g = 0
+        zeroForces(lean, zero_g, false);                          // f_int (shared by both) = 0
         Kokkos::deep_copy(general.f_int, randomNodes(rng).f_int); // new forces every step
         const NodeSums a = updateNodes(general, bcs, 1e-3, dim, owned, true);
         const NodeSums b = updateNodes(lean, bcs, 1e-3, dim, owned, false);
@@ -132,7 +132,8 @@ TEST(NodeUpdate, StepTwelveWithNextGravityLeavesTheForcesOfStepFive)
       const NodeFields apart = randomNodes(rng);
       Kokkos::deep_copy(apart.f_ext, randomNodes(rng).f_int); // nonzero, to see what is kept
       NodeFields fused = apart;
-      for (VectorView *f : {&fused.x, &fused.v, &fused.f_int, &fused.f_ext, &fused.external_impulse})
+      for (VectorView *f :
+           {&fused.x, &fused.v, &fused.f_int, &fused.f_ext, &fused.external_impulse})
         *f = copyOf(*f, "fused");
       BoundaryConditions bcs;
       bcs.velocity_current = RealView("vbc", 2);

@@ -76,7 +76,8 @@ INSTANTIATE_TEST_SUITE_P(Decks, FusedNodeUpdate,
 // step 6 integrates, on one thread (one chunk) and on the test's threads.
 TEST(FusedNodeUpdate, IntegratesTheInnerNodesInStepSix)
 {
-  for (const char *file : {"block_impact_2d.yaml", "merged_blocks_3d.yaml", "brick_stack_3d_sticky.yaml"})
+  for (const char *file :
+       {"block_impact_2d.yaml", "merged_blocks_3d.yaml", "brick_stack_3d_sticky.yaml"})
   {
     Solver s(parseDeck(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + file));
     ASSERT_TRUE(s.nodeSweep().active) << file;
@@ -86,7 +87,7 @@ TEST(FusedNodeUpdate, IntegratesTheInnerNodesInStepSix)
       early += runs(k, 1) - runs(k, 0);
     EXPECT_GT(early, 0) << file;
     EXPECT_EQ(s.sweepNodeCount(), early) << file; // summary.json's nodes_in_element_sweep
-    EXPECT_LT(early, s.nodes().count) << file; // the contact, pressure and constrained nodes
+    EXPECT_LT(early, s.nodes().count) << file;    // the contact, pressure and constrained nodes
   }
 }
 

@@ -60,7 +60,8 @@ double readAttribute(hid_t file, const std::string &obj, const char *name)
   return v;
 }
 
-template <class T> std::vector<double> asDouble(const std::vector<T> &v)
+template <class T>
+std::vector<double> asDouble(const std::vector<T> &v)
 {
   return std::vector<double>(v.begin(), v.end());
 }

@@ -48,10 +48,7 @@ std::uint64_t bits(double d)
   return b;
 }
 
-bool havePython()
-{
-  return std::system("/usr/bin/python3 -c 'import json' > /dev/null 2>&1") == 0;
-}
+bool havePython() { return std::system("/usr/bin/python3 -c 'import json' > /dev/null 2>&1") == 0; }
 
 } // namespace
 

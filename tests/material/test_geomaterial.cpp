@@ -17,27 +17,43 @@ namespace
 MaterialSpec limestone()
 {
   return makeSpec("geomaterial", "linear",
-                  {{"density", 2600},          {"youngs_modulus", 43.875e9},
-                   {"poisson_ratio", 0.25},    {"porosity", 0.04},
-                   {"crush_pressure", 200e6},  {"lock_pressure", 2e9},
-                   {"solid_bulk_modulus", 70e9}, {"intact_strength", 50e6},
-                   {"intact_friction", 1.5},   {"max_strength", 1.5e9},
-                   {"damaged_friction", 1.2},  {"tensile_strength", 8e6},
-                   {"damage_strain", 0.01},    {"dilatancy", 0.1},
-                   {"dilatancy_pressure", 250e6}, {"compaction_hardening", 0.2}});
+                  {{"density", 2600},
+                   {"youngs_modulus", 43.875e9},
+                   {"poisson_ratio", 0.25},
+                   {"porosity", 0.04},
+                   {"crush_pressure", 200e6},
+                   {"lock_pressure", 2e9},
+                   {"solid_bulk_modulus", 70e9},
+                   {"intact_strength", 50e6},
+                   {"intact_friction", 1.5},
+                   {"max_strength", 1.5e9},
+                   {"damaged_friction", 1.2},
+                   {"tensile_strength", 8e6},
+                   {"damage_strain", 0.01},
+                   {"dilatancy", 0.1},
+                   {"dilatancy_pressure", 250e6},
+                   {"compaction_hardening", 0.2}});
 }
 
 MaterialSpec concrete()
 {
   return makeSpec("geomaterial", "linear",
-                  {{"density", 2440},          {"bulk_modulus", 16e9},
-                   {"shear_modulus", 14.86e9}, {"porosity", 0.0823},
-                   {"crush_pressure", 16e6},   {"lock_pressure", 800e6},
-                   {"solid_bulk_modulus", 85e9}, {"intact_strength", 12e6},
-                   {"intact_friction", 2.53},  {"max_strength", 336e6},
-                   {"damaged_friction", 1.05}, {"tensile_strength", 4e6},
-                   {"damage_strain", 0.002},   {"dilatancy", 0.2},
-                   {"dilatancy_pressure", 100e6}, {"compaction_hardening", 0.3}});
+                  {{"density", 2440},
+                   {"bulk_modulus", 16e9},
+                   {"shear_modulus", 14.86e9},
+                   {"porosity", 0.0823},
+                   {"crush_pressure", 16e6},
+                   {"lock_pressure", 800e6},
+                   {"solid_bulk_modulus", 85e9},
+                   {"intact_strength", 12e6},
+                   {"intact_friction", 2.53},
+                   {"max_strength", 336e6},
+                   {"damaged_friction", 1.05},
+                   {"tensile_strength", 4e6},
+                   {"damage_strain", 0.002},
+                   {"dilatancy", 0.2},
+                   {"dilatancy_pressure", 100e6},
+                   {"compaction_hardening", 0.3}});
 }
 
 MaterialParams without(MaterialSpec s, std::initializer_list<const char *> keys)
@@ -52,8 +68,8 @@ double yieldSurface(const MaterialParams &p, double P, double D, double theta_p)
 {
   const double *m = p.model_params;
   const double y0 = m[kGeoY0], ym = m[kGeoYmax], mi = m[kGeoMuI];
-  const double yi = P >= 0 ? y0 + mi * P / (1 + mi * P / (ym - y0))
-                           : y0 * std::max(0.0, 1 + P / m[kGeoT0]);
+  const double yi =
+      P >= 0 ? y0 + mi * P / (1 + mi * P / (ym - y0)) : y0 * std::max(0.0, 1 + P / m[kGeoT0]);
   const double yd = std::min(m[kGeoMuD] * std::max(P, 0.0), ym);
   const double tl = m[kGeoThetaLock];
   const double h = tl > 0 ? 1 + m[kGeoHc] * std::min(std::max(theta_p / tl, 0.0), 1.0) : 1.0;
@@ -174,8 +190,8 @@ TEST(Geomaterial, TriaxialStrengthPointsOnYieldSurface)
 {
   MaterialSpec s = limestone();
   s.values["dilatancy"] = 0; // no damage: perfectly plastic on the intact surface
-  const MaterialParams p = without(s, {"porosity", "crush_pressure", "lock_pressure",
-                                       "solid_bulk_modulus"});
+  const MaterialParams p =
+      without(s, {"porosity", "crush_pressure", "lock_pressure", "solid_bulk_modulus"});
   for (double sc : {0.0, 10e6, 50e6, 150e6})
   {
     // the strength point: q = Y(sigma_c + q/3) (triaxial compression, p = sigma_c + q/3)
@@ -197,8 +213,8 @@ TEST(Geomaterial, TriaxialStrengthPointsOnYieldSurface)
 
 TEST(Geomaterial, BrittleSofteningByDilatancyToDamagedSurface)
 {
-  const MaterialParams p = without(limestone(), {"porosity", "crush_pressure", "lock_pressure",
-                                                 "solid_bulk_modulus"});
+  const MaterialParams p =
+      without(limestone(), {"porosity", "crush_pressure", "lock_pressure", "solid_bulk_modulus"});
   const double sc = 20e6;
   double q_peak = 0, d_prev = 0;
   bool monotone = true;
@@ -207,8 +223,8 @@ TEST(Geomaterial, BrittleSofteningByDilatancyToDamagedSurface)
     const double D = mp.history[kGeoHistDamage];
     monotone = monotone && D >= d_prev;
     d_prev = D;
-    EXPECT_LE(mp.mises(), yieldSurface(p, mp.pressure(), D, mp.history[kGeoHistThetaP]) *
-                              (1 + 1e-10));
+    EXPECT_LE(mp.mises(),
+              yieldSurface(p, mp.pressure(), D, mp.history[kGeoHistThetaP]) * (1 + 1e-10));
     EXPECT_DOUBLE_EQ(mp.history[kGeoHistTensile], 8e6 * (1 - D));
   });
   double lo = 0, hi = 2e9;
@@ -230,8 +246,8 @@ TEST(Geomaterial, BrittleSofteningByDilatancyToDamagedSurface)
 
 TEST(Geomaterial, TensileSofteningToZeroAndCrackClosure)
 {
-  const MaterialParams p = without(limestone(), {"porosity", "crush_pressure", "lock_pressure",
-                                                 "solid_bulk_modulus"});
+  const MaterialParams p =
+      without(limestone(), {"porosity", "crush_pressure", "lock_pressure", "solid_bulk_modulus"});
   const double K = p.bulk, t0 = 8e6, ed = 0.01;
   MaterialPoint mp(p);
   EXPECT_EQ(mp.history[kGeoHistTensile], t0);

@@ -33,12 +33,12 @@ TEST(J2Return, UniaxialStrainMatchesClosedForm)
     strain += rate * dt;
     // Along a straight deviatoric path the radial return is exact for linear hardening:
     // q_trial - 3 G eps_p = sigma_y0 + H eps_p with q_trial = 2 G strain.
-    const Real eps_exact =
-        std::max(0.0, (2 * p.shear * strain - p.yield_stress) / (3 * p.shear + p.hardening_modulus));
+    const Real eps_exact = std::max(0.0, (2 * p.shear * strain - p.yield_stress) /
+                                             (3 * p.shear + p.hardening_modulus));
     EXPECT_NEAR(mp.eps, eps_exact, 1e-12 + 1e-10 * eps_exact) << "step " << n;
     // pressure of the linear EOS: K times the volumetric strain; axial stress -(p + 2/3 q)
-    const Real q = eps_exact > 0 ? p.yield_stress + p.hardening_modulus * eps_exact
-                                 : 2 * p.shear * strain;
+    const Real q =
+        eps_exact > 0 ? p.yield_stress + p.hardening_modulus * eps_exact : 2 * p.shear * strain;
     const Real sxx = -(p.bulk * strain + 2.0 / 3.0 * q);
     EXPECT_LT(relErr(mp.stress[0], sxx), 1e-10) << "step " << n;
   }
@@ -51,8 +51,8 @@ TEST(J2Return, ReturnedStressOnYieldSurfaceAndNormal)
   MaterialPoint mp(p);
   const Real dt = 2e-7;
   // non-proportional path: shear, then tension-compression, then mixed
-  const Real paths[3][6] = {{0, 0, 0, 300, 0, 0}, {200, -100, -100, 0, 0, 0},
-                            {-150, 50, 20, 100, -80, 60}};
+  const Real paths[3][6] = {
+      {0, 0, 0, 300, 0, 0}, {200, -100, -100, 0, 0, 0}, {-150, 50, 20, 100, -80, 60}};
   int plastic_steps = 0;
   for (const auto &D : paths)
     for (int n = 0; n < 300; ++n)

@@ -102,8 +102,8 @@ TEST(JohnsonCook, IsothermalWithoutMeltTemperature)
   for (int n = 0; n < 500; ++n)
     mp.step(D, 2e-7);
   EXPECT_EQ(mp.history[kJcHistTemperature], 294.0);
-  const Real jc = jcFormula(90e6, 292e6, 0.31, 0.025, 1.0, 1e9, mp.eps,
-                            mp.history[kJcHistRate], 294);
+  const Real jc =
+      jcFormula(90e6, 292e6, 0.31, 0.025, 1.0, 1e9, mp.eps, mp.history[kJcHistRate], 294);
   EXPECT_LT(relErr(mp.mises(), jc), 1e-10);
 }
 
@@ -127,9 +127,9 @@ TEST(JohnsonCook, StrainRateJumpActsWithinTheStep)
       mp.step(D, dt);
       const Real d = mp.eps - eps_old;
       if (d > 0) // returned stress on the surface at the step's own plastic rate
-        EXPECT_LT(relErr(mp.mises(),
-                         jcFormula(90e6, 292e6, 0.31, 0.025, 1, 1e9, mp.eps, d / dt, 294)),
-                  1e-10);
+        EXPECT_LT(
+            relErr(mp.mises(), jcFormula(90e6, 292e6, 0.31, 0.025, 1, 1e9, mp.eps, d / dt, 294)),
+            1e-10);
     }
   };
   drive(1e3, 1e-6, 200); // 1e-3 per step to eps ~ 0.2
@@ -139,8 +139,8 @@ TEST(JohnsonCook, StrainRateJumpActsWithinTheStep)
   // plastic rate = applied rate once the elastic transient is over (5e-3: the hardening's
   // elastic share dq/3G per step, as in DrivenPathStaysOnRateDependentSurface)
   EXPECT_LT(relErr(mp.history[kJcHistRate], 1e5), 5e-3);
-  const Real hard = (90e6 + 292e6 * std::pow(mp.eps, 0.31)) /
-                    (90e6 + 292e6 * std::pow(eps_before, 0.31));
+  const Real hard =
+      (90e6 + 292e6 * std::pow(mp.eps, 0.31)) / (90e6 + 292e6 * std::pow(eps_before, 0.31));
   const Real rate_jump = (1 + 0.025 * std::log(1e5)) / (1 + 0.025 * std::log(1e3));
   // both rates are within 0.5 % of the applied ones: 0.025 * 0.005 / 1.29 ~ 1e-4 of stress
   EXPECT_LT(relErr(mp.mises() / q_before, hard * rate_jump), 2e-4);

@@ -101,7 +101,8 @@ double isentropeError(const HeSet &h, int steps, Real Vmax)
   {
     mp.step(D, dt);
     const Real V = p.density / mp.rho;
-    const Real ps = h.A * std::exp(-h.R1 * V) + h.B * std::exp(-h.R2 * V) + C * std::pow(V, -1 - h.w);
+    const Real ps =
+        h.A * std::exp(-h.R1 * V) + h.B * std::exp(-h.R2 * V) + C * std::pow(V, -1 - h.w);
     worst = std::max(worst, relErr(mp.pressure(), ps));
   }
   return worst;
@@ -112,7 +113,7 @@ TEST(Jwl, ExpansionFollowsIsentropeThroughCj)
   for (const HeSet &h : kSets)
   {
     const double e1 = isentropeError(h, 500, 5.0), e2 = isentropeError(h, 1000, 5.0);
-    EXPECT_LT(e2, 1e-4) << h.name; // p falls by ~50x over the path
+    EXPECT_LT(e2, 1e-4) << h.name;     // p falls by ~50x over the path
     EXPECT_GT(e1 / e2, 3.5) << h.name; // trapezoidal energy update: second order in dt
     EXPECT_LT(e1 / e2, 4.5) << h.name;
   }
@@ -158,7 +159,7 @@ TEST(Jwl, ConstantVolumeBurnReleasesDetonationEnergy)
   const HeSet &h = kSets[0];
   const MaterialParams p = makeMaterialParams(heSpec(h));
   MaterialPoint mp(p);
-  EXPECT_EQ(mp.e, h.E0 / h.rho0); // initialSpecificEnergy
+  EXPECT_EQ(mp.e, h.E0 / h.rho0);               // initialSpecificEnergy
   EXPECT_EQ(mp.history[kHeHistLightTime], 0.0); // centroid at the ignition point
   mp.length = 1e-3;
   const Real D0[6] = {0, 0, 0, 0, 0, 0};

@@ -24,8 +24,7 @@ void expectError(const MaterialSpec &s, const std::string &key)
     auto it = s.lines.find(key);
     if (it != s.lines.end())
     {
-      EXPECT_NE(what.find("(line " + std::to_string(it->second) + ")"), std::string::npos)
-          << what;
+      EXPECT_NE(what.find("(line " + std::to_string(it->second) + ")"), std::string::npos) << what;
     }
   }
 }
@@ -33,39 +32,63 @@ void expectError(const MaterialSpec &s, const std::string &key)
 MaterialSpec steel4340()
 {
   return makeSpec("johnson_cook", "mie_gruneisen",
-                  {{"density", 7830}, {"shear_modulus", 77.5e9}, {"A", 792e6}, {"B", 510e6},
-                   {"n", 0.26}, {"C", 0.014}, {"m", 1.03}, {"melt_temperature", 1793},
-                   {"specific_heat", 477}, {"eos.c0", 4578}, {"eos.s", 1.33},
+                  {{"density", 7830},
+                   {"shear_modulus", 77.5e9},
+                   {"A", 792e6},
+                   {"B", 510e6},
+                   {"n", 0.26},
+                   {"C", 0.014},
+                   {"m", 1.03},
+                   {"melt_temperature", 1793},
+                   {"specific_heat", 477},
+                   {"eos.c0", 4578},
+                   {"eos.s", 1.33},
                    {"eos.gamma0", 1.67}});
 }
 
 MaterialSpec tnt()
 {
   return makeSpec("high_explosive", "jwl",
-                  {{"density", 1630}, {"eos.A", 371.2e9}, {"eos.B", 3.231e9}, {"eos.R1", 4.15},
-                   {"eos.R2", 0.95}, {"eos.omega", 0.30}, {"eos.E0", 7.0e9}, {"D", 6930},
+                  {{"density", 1630},
+                   {"eos.A", 371.2e9},
+                   {"eos.B", 3.231e9},
+                   {"eos.R1", 4.15},
+                   {"eos.R2", 0.95},
+                   {"eos.omega", 0.30},
+                   {"eos.E0", 7.0e9},
+                   {"D", 6930},
                    {"pcj", 21.0e9}});
 }
 
 MaterialSpec limestone()
 {
   return makeSpec("geomaterial", "linear",
-                  {{"density", 2600}, {"youngs_modulus", 43.875e9}, {"poisson_ratio", 0.25},
-                   {"porosity", 0.04}, {"crush_pressure", 200e6}, {"lock_pressure", 2e9},
-                   {"solid_bulk_modulus", 70e9}, {"intact_strength", 50e6},
-                   {"intact_friction", 1.5}, {"max_strength", 1.5e9}, {"damaged_friction", 1.2},
-                   {"tensile_strength", 8e6}, {"damage_strain", 0.01}, {"dilatancy", 0.1},
-                   {"dilatancy_pressure", 250e6}, {"compaction_hardening", 0.2}});
+                  {{"density", 2600},
+                   {"youngs_modulus", 43.875e9},
+                   {"poisson_ratio", 0.25},
+                   {"porosity", 0.04},
+                   {"crush_pressure", 200e6},
+                   {"lock_pressure", 2e9},
+                   {"solid_bulk_modulus", 70e9},
+                   {"intact_strength", 50e6},
+                   {"intact_friction", 1.5},
+                   {"max_strength", 1.5e9},
+                   {"damaged_friction", 1.2},
+                   {"tensile_strength", 8e6},
+                   {"damage_strain", 0.01},
+                   {"dilatancy", 0.1},
+                   {"dilatancy_pressure", 250e6},
+                   {"compaction_hardening", 0.2}});
 }
 
 TEST(MaterialLibrary, DocumentedSetsConvert)
 {
   const MaterialParams st = makeMaterialParams(steel4340());
   EXPECT_EQ(st.model, MaterialModel::JohnsonCook);
-  EXPECT_EQ(st.model_params[kJcTroom], 294.0);     // default room temperature
-  EXPECT_EQ(st.model_params[kJcRate0], 1.0);       // default reference rate
-  EXPECT_EQ(st.model_params[kJcChi], 0.9);         // default Taylor-Quinney fraction
-  EXPECT_EQ(st.bulk, 7830.0 * 4578 * 4578);        // from the EOS: rho0 c0^2
+  EXPECT_EQ(st.model_params[kJcTroom], 294.0); // default room temperature
+  EXPECT_EQ(st.model_params[kJcRate0], 1.0);   // default reference rate
+  EXPECT_EQ(st.model_params[kJcChi], 0.9);     // default Taylor-Quinney fraction
+  EXPECT_EQ(st.bulk, 7830.0 * 4578 * 4578);    // from the EOS: rho0 c0^2
   const MaterialParams ls = makeMaterialParams(limestone());
   // the paper's limestone: P-wave speed 4500 m/s at 2600 kg/m^3
   EXPECT_LT(relErr(referenceSoundSpeed(ls), 4500), 1e-12);
@@ -75,8 +98,8 @@ TEST(MaterialLibrary, DocumentedSetsConvert)
   EXPECT_EQ(referenceSoundSpeed(he), 6930.0); // D bounds the products' sound speed
   EXPECT_EQ(initialSpecificEnergy(he), 7.0e9 / 1630);
   EXPECT_EQ(initialSpecificEnergy(st), 0.0);
-  EXPECT_EQ(he.model_params[kHeAxis], -1.0);      // point ignition by default
-  EXPECT_EQ(he.model_params[kHeBurnWidth], 1.5);  // LS-DYNA's ramp
+  EXPECT_EQ(he.model_params[kHeAxis], -1.0);     // point ignition by default
+  EXPECT_EQ(he.model_params[kHeBurnWidth], 1.5); // LS-DYNA's ramp
   // D defaults to the model's CJ velocity
   MaterialSpec no_d = tnt();
   no_d.values.erase("D");
@@ -86,10 +109,12 @@ TEST(MaterialLibrary, DocumentedSetsConvert)
 
 TEST(MaterialLibrary, ExistingModelsUnchanged)
 {
-  const MaterialParams p = makeMaterialParams(makeSpec(
-      "elastic_plastic", "linear",
-      {{"density", 8930}, {"youngs_modulus", 117e9}, {"poisson_ratio", 0.35},
-       {"yield_stress", 400e6}, {"hardening_modulus", 100e6}}));
+  const MaterialParams p = makeMaterialParams(makeSpec("elastic_plastic", "linear",
+                                                       {{"density", 8930},
+                                                        {"youngs_modulus", 117e9},
+                                                        {"poisson_ratio", 0.35},
+                                                        {"yield_stress", 400e6},
+                                                        {"hardening_modulus", 100e6}}));
   EXPECT_EQ(p.model, MaterialModel::ElasticPlastic);
   EXPECT_EQ(p.bulk, 117e9 / (3 * (1 - 2 * 0.35)));
   EXPECT_EQ(p.shear, 117e9 / (2 * 1.35));

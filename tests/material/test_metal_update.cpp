@@ -21,19 +21,29 @@ MaterialSpec steelElastic(const std::string &eos)
     return makeSpec("elastic", "linear",
                     {{"density", 7850}, {"youngs_modulus", 200e9}, {"poisson_ratio", 0.3}});
   return makeSpec("elastic", "mie_gruneisen",
-                  {{"density", 7850}, {"shear_modulus", 77e9}, {"eos.c0", 4570},
-                   {"eos.s", 1.49}, {"eos.gamma0", 1.93}});
+                  {{"density", 7850},
+                   {"shear_modulus", 77e9},
+                   {"eos.c0", 4570},
+                   {"eos.s", 1.49},
+                   {"eos.gamma0", 1.93}});
 }
 
 MaterialSpec steelJ2(const std::string &eos)
 {
   if (eos == "linear")
     return makeSpec("elastic_plastic", "linear",
-                    {{"density", 7850}, {"youngs_modulus", 200e9}, {"poisson_ratio", 0.3},
-                     {"yield_stress", 400e6}, {"hardening_modulus", 2e9}});
+                    {{"density", 7850},
+                     {"youngs_modulus", 200e9},
+                     {"poisson_ratio", 0.3},
+                     {"yield_stress", 400e6},
+                     {"hardening_modulus", 2e9}});
   return makeSpec("elastic_plastic", "mie_gruneisen",
-                  {{"density", 7850}, {"shear_modulus", 77e9}, {"yield_stress", 400e6},
-                   {"eos.c0", 4570}, {"eos.s", 1.49}, {"eos.gamma0", 1.93}});
+                  {{"density", 7850},
+                   {"shear_modulus", 77e9},
+                   {"yield_stress", 400e6},
+                   {"eos.c0", 4570},
+                   {"eos.s", 1.49},
+                   {"eos.gamma0", 1.93}});
 }
 
 std::vector<MaterialSpec> allModels()
@@ -43,22 +53,45 @@ std::vector<MaterialSpec> allModels()
           steelJ2("linear"),
           steelJ2("mie_gruneisen"),
           makeSpec("johnson_cook", "mie_gruneisen",
-                   {{"density", 7830}, {"shear_modulus", 77.5e9}, {"A", 792e6}, {"B", 510e6},
-                    {"n", 0.26}, {"C", 0.014}, {"m", 1.03}, {"melt_temperature", 1793},
-                    {"specific_heat", 477}, {"eos.c0", 4578}, {"eos.s", 1.33},
+                   {{"density", 7830},
+                    {"shear_modulus", 77.5e9},
+                    {"A", 792e6},
+                    {"B", 510e6},
+                    {"n", 0.26},
+                    {"C", 0.014},
+                    {"m", 1.03},
+                    {"melt_temperature", 1793},
+                    {"specific_heat", 477},
+                    {"eos.c0", 4578},
+                    {"eos.s", 1.33},
                     {"eos.gamma0", 1.67}}),
           makeSpec("geomaterial", "linear",
-                   {{"density", 2600}, {"youngs_modulus", 43.875e9}, {"poisson_ratio", 0.25},
-                    {"porosity", 0.04}, {"crush_pressure", 200e6}, {"lock_pressure", 2e9},
-                    {"solid_bulk_modulus", 70e9}, {"intact_strength", 50e6},
-                    {"intact_friction", 1.5}, {"max_strength", 1.5e9},
-                    {"damaged_friction", 1.2}, {"tensile_strength", 8e6},
-                    {"damage_strain", 0.01}, {"dilatancy", 0.1},
-                    {"dilatancy_pressure", 250e6}, {"compaction_hardening", 0.2}}),
+                   {{"density", 2600},
+                    {"youngs_modulus", 43.875e9},
+                    {"poisson_ratio", 0.25},
+                    {"porosity", 0.04},
+                    {"crush_pressure", 200e6},
+                    {"lock_pressure", 2e9},
+                    {"solid_bulk_modulus", 70e9},
+                    {"intact_strength", 50e6},
+                    {"intact_friction", 1.5},
+                    {"max_strength", 1.5e9},
+                    {"damaged_friction", 1.2},
+                    {"tensile_strength", 8e6},
+                    {"damage_strain", 0.01},
+                    {"dilatancy", 0.1},
+                    {"dilatancy_pressure", 250e6},
+                    {"compaction_hardening", 0.2}}),
           makeSpec("high_explosive", "jwl",
-                   {{"density", 1630}, {"eos.A", 371.2e9}, {"eos.B", 3.231e9},
-                    {"eos.R1", 4.15}, {"eos.R2", 0.95}, {"eos.omega", 0.30},
-                    {"eos.E0", 7.0e9}, {"D", 6930}, {"pcj", 21.0e9}})};
+                   {{"density", 1630},
+                    {"eos.A", 371.2e9},
+                    {"eos.B", 3.231e9},
+                    {"eos.R1", 4.15},
+                    {"eos.R2", 0.95},
+                    {"eos.omega", 0.30},
+                    {"eos.E0", 7.0e9},
+                    {"D", 6930},
+                    {"pcj", 21.0e9}})};
 }
 
 TEST(MetalUpdate, ElasticLinearIsHypoelasticWithTrapezoidalWork)

@@ -74,9 +74,9 @@ TEST(MieGruneisen, ExpansionBranchAndSoundSpeed)
   // in tension the reference curve is linear: p = rho0 c0^2 mu + gamma0 rho0 e
   const MaterialPoint ten = shockTo(p, -0.01);
   const Real mu = -0.01;
-  EXPECT_LT(relErr(ten.pressure(), p.density * p.mg_c0 * p.mg_c0 * mu +
-                                       p.mg_gamma0 * p.density * ten.e),
-            1e-12);
+  EXPECT_LT(
+      relErr(ten.pressure(), p.density * p.mg_c0 * p.mg_c0 * mu + p.mg_gamma0 * p.density * ten.e),
+      1e-12);
 }
 
 } // namespace

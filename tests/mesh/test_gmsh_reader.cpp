@@ -94,7 +94,8 @@ Physical Surface(7) = {2};
 Physical Curve("bottom") = {1, 5};
 Physical Curve("interface") = {2};
 Physical Point("corner") = {1};
-)", 2);
+)",
+                         2);
   const HostMesh m = readGmsh41(path);
   EXPECT_EQ(m.dim, 2);
   ASSERT_EQ(m.parts.size(), 2u);
@@ -144,7 +145,8 @@ TEST(GmshReader, ClockwiseSurfaceAndUnnamedElements)
   const auto path = mesh("unnamed", geo + kQuads + R"(
 Physical Surface("named") = {1};
 Mesh.SaveAll = 1;
-)", 2);
+)",
+                         2);
   const HostMesh m = readGmsh41(path);
   ASSERT_EQ(m.parts.size(), 2u);
   EXPECT_EQ(m.parts[0].name, "named");
@@ -166,7 +168,8 @@ Physical Volume("big") = {out1[1]};
 Physical Volume("small") = {out2[1]};
 Physical Surface("bottom") = {1, 2};
 Physical Surface("top") = {out1[0], out2[0]};
-)", 3);
+)",
+                         3);
   const HostMesh m = readGmsh41(path);
   EXPECT_EQ(m.dim, 3);
   ASSERT_EQ(m.parts.size(), 2u);
@@ -188,7 +191,7 @@ Physical Surface("top") = {out1[0], out2[0]};
     for (const auto &f : fs)
       az += areaVector(m, f)[2];
     EXPECT_NEAR(az, std::string(name) == "top" ? 3.0 : -3.0, kGeomTol * 3); // outward
-    EXPECT_EQ(m.node_sets.at(name).size(), 15u + 9u) << name; // every part copy
+    EXPECT_EQ(m.node_sets.at(name).size(), 15u + 9u) << name;               // every part copy
   }
 }
 
@@ -204,7 +207,8 @@ Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
 out[] = Extrude {0, 0, 0.5} { Surface{1}; };
 Physical Volume("box") = {out[1]};
 Physical Surface("skin") = {1, out[0], out[2], out[3], out[4], out[5]};
-)", 3);
+)",
+                         3);
   const HostMesh m = readGmsh41(path);
   ASSERT_EQ(m.parts.size(), 1u);
   EXPECT_EQ(m.parts[0].type, ElementType::Tet4);
@@ -248,7 +252,8 @@ Transfinite Curve{1} = 11;
 Physical Curve("bar") = {1};
 Physical Point("left") = {1};
 Physical Point("right") = {2};
-)", 1);
+)",
+                         1);
   const HostMesh m = readGmsh41(path);
   EXPECT_EQ(m.dim, 1);
   ASSERT_EQ(m.parts.size(), 1u);

@@ -127,8 +127,8 @@ TEST(MeshGenerators, DimensionMismatchAndBadInputThrow)
                std::runtime_error);
   EXPECT_THROW(appendBlock(m, "c", ElementType::Quad4, {{0, 2, 1}}, {{0, 0, 0}}, {{1, 1, 0}}),
                std::runtime_error);
-  EXPECT_THROW(appendBrickWall(m, "w", ElementType::Quad4, {{2, 2, 1}}, {{0, 0, 0}},
-                               {{1, 1, 0}}, {{2, 2, 1}}, 1.0),
+  EXPECT_THROW(appendBrickWall(m, "w", ElementType::Quad4, {{2, 2, 1}}, {{0, 0, 0}}, {{1, 1, 0}},
+                               {{2, 2, 1}}, 1.0),
                std::runtime_error);
   EXPECT_EQ(m.parts.size(), 1u); // failed calls add nothing
 }
@@ -172,8 +172,8 @@ TEST(MeshGenerators, BrickWallT6d)
 TEST(MeshGenerators, BrickWallStackBondAnd3D)
 {
   HostMesh s;
-  appendBrickWall(s, "s", ElementType::Quad4, {{2, 1, 1}}, {{0, 0, 0}}, {{1, 0.5, 0}},
-                  {{3, 4, 1}}, 0.0);
+  appendBrickWall(s, "s", ElementType::Quad4, {{2, 1, 1}}, {{0, 0, 0}}, {{1, 0.5, 0}}, {{3, 4, 1}},
+                  0.0);
   EXPECT_EQ(s.parts.size(), 12u);
 
   HostMesh h;
@@ -205,8 +205,8 @@ TEST(MeshGenerators, BrickWallStackBondAnd3D)
   EXPECT_NEAR(length, 0.004, 1e-15);
 
   HostMesh t;
-  appendBrickWall(t, "t", ElementType::Tet4, {{2, 1, 1}}, {{0, 0, 0}}, {{1, 1, 1}},
-                  {{2, 1, 2}}, 0.5);
+  appendBrickWall(t, "t", ElementType::Tet4, {{2, 1, 1}}, {{0, 0, 0}}, {{1, 1, 1}}, {{2, 1, 2}},
+                  0.5);
   EXPECT_EQ(t.parts.size(), 2u + 3u);
   EXPECT_EQ(t.numElements(), 6 * (2 * 2 + 1 + 2 + 1));
   EXPECT_NO_THROW(checkElements(t));

@@ -87,14 +87,14 @@ struct DecomposedCase
 std::vector<DecomposedCase> decomposedCases();
 
 /// Print on rank 0 only (the numbers the report quotes).
-#define SCPDYN_ROOT_PRINT(...)                                                                   \
-  do                                                                                            \
-  {                                                                                             \
-    if (::scpdyn::mpiRank() == 0)                                                               \
-    {                                                                                           \
-      std::printf(__VA_ARGS__);                                                                 \
-      std::fflush(stdout);                                                                      \
-    }                                                                                           \
+#define SCPDYN_ROOT_PRINT(...)                                                                     \
+  do                                                                                               \
+  {                                                                                                \
+    if (::scpdyn::mpiRank() == 0)                                                                  \
+    {                                                                                              \
+      std::printf(__VA_ARGS__);                                                                    \
+      std::fflush(stdout);                                                                         \
+    }                                                                                              \
   } while (0)
 
 } // namespace scpdyn::test

@@ -43,11 +43,11 @@ std::vector<WallCase> wallCases()
 {
   std::vector<WallCase> cases;
   cases.push_back({"2D running bond", HostMesh(), 2, 0.25});
-  appendBrickWall(cases.back().mesh, "w", ElementType::Quad4, {4, 2, 1}, {0, 0, 0},
-                  {0.4, 0.1, 1}, {4, 5, 1}, 0.5);
+  appendBrickWall(cases.back().mesh, "w", ElementType::Quad4, {4, 2, 1}, {0, 0, 0}, {0.4, 0.1, 1},
+                  {4, 5, 1}, 0.5);
   cases.push_back({"3D stack", HostMesh(), 3, 0.3});
-  appendBrickWall(cases.back().mesh, "w", ElementType::Hex8, {3, 2, 2}, {0, 0, 0},
-                  {0.3, 0.2, 0.2}, {3, 3, 2}, 0.0);
+  appendBrickWall(cases.back().mesh, "w", ElementType::Hex8, {3, 2, 2}, {0, 0, 0}, {0.3, 0.2, 0.2},
+                  {3, 3, 2}, 0.0);
   return cases;
 }
 

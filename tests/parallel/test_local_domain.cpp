@@ -19,7 +19,8 @@ std::vector<DecomposedCase> decomposedCases()
   {
     DecomposedCase c{"quad 12x10, METIS", quadBlock(12, 10), {}};
     c.mesh.node_sets["left"] = nodesInBox(c.mesh, {0, 0, 0}, {0, 0.8, 0}, 1e-9);
-    c.mesh.face_sets["bottom"] = facesInBox(extractExternalFaces(c.mesh), c.mesh, {0, 0, 0}, {1, 0, 0}, 1e-9);
+    c.mesh.face_sets["bottom"] =
+        facesInBox(extractExternalFaces(c.mesh), c.mesh, {0, 0, 0}, {1, 0, 0}, 1e-9);
     c.rank = partitionElements(c.mesh, extractExternalFaces(c.mesh), size);
     cases.push_back(c);
   }
@@ -39,7 +40,8 @@ std::vector<DecomposedCase> decomposedCases()
   {
     // bricks merged into one body (nodes shared across parts) plus a separate jointed block
     DecomposedCase c{"merged wall + block, METIS", HostMesh(), {}};
-    appendBrickWall(c.mesh, "wall", ElementType::Quad4, {3, 2, 1}, {0, 0, 0}, {0.3, 0.1, 1}, {3, 3, 1}, 0.5);
+    appendBrickWall(c.mesh, "wall", ElementType::Quad4, {3, 2, 1}, {0, 0, 0}, {0.3, 0.1, 1},
+                    {3, 3, 1}, 0.5);
     std::vector<int> all(c.mesh.parts.size());
     for (size_t p = 0; p < all.size(); ++p)
       all[p] = int(p);
@@ -79,8 +81,9 @@ TEST(LocalDomain, RanksTogetherHoldTheGlobalMesh)
       ++node_count[size_t(n)];
     element_count = sumOverRanks(element_count);
     node_count = sumOverRanks(node_count);
-    EXPECT_TRUE(std::all_of(element_count.begin(), element_count.end(), [](int k) { return k == 1; }))
-        << c.name;
+    EXPECT_TRUE(std::all_of(element_count.begin(), element_count.end(), [](int k) {
+      return k == 1;
+    })) << c.name;
 
     // reference from the global mesh: the ranks of the elements using each node
     std::vector<std::set<int>> holders(size_t(g.numNodes()));
@@ -169,12 +172,13 @@ TEST(LocalDomain, RanksTogetherHoldTheGlobalMesh)
       EXPECT_EQ(mark, expected_mark) << c.name << " node set " << set.first;
     }
     const std::vector<HostFace> gfaces = extractExternalFaces(g);
-    std::vector<std::pair<std::string, std::vector<HostFace>>> face_lists(g.face_sets.begin(), g.face_sets.end());
+    std::vector<std::pair<std::string, std::vector<HostFace>>> face_lists(g.face_sets.begin(),
+                                                                          g.face_sets.end());
     face_lists.push_back({"<external>", gfaces});
     for (const auto &set : face_lists)
     {
-      const std::vector<HostFace> local = set.first == "<external>" ? localFaces(gfaces, d)
-                                                                    : l.face_sets.at(set.first);
+      const std::vector<HostFace> local =
+          set.first == "<external>" ? localFaces(gfaces, d) : l.face_sets.at(set.first);
       EXPECT_EQ(allReduceSum((long long)local.size()), (long long)set.second.size()) << set.first;
       for (const HostFace &f : local)
       {

@@ -81,7 +81,7 @@ TEST(Mpi, NextTimeStepReducesLimitsAndSumsInOneCollective)
   TimeStepControls ctl;
   ctl.courant = 0.5;
   TimeStepLimits limits;
-  limits.element = 1e-6 * (2.0 + rank); // rank 0 has the smallest element step
+  limits.element = 1e-6 * (2.0 + rank);                // rank 0 has the smallest element step
   limits.contact = rank == size - 1 ? 0.75e-6 : 1e300; // the last rank's contact limit
   NodeSums sums;
   sums.kinetic = 1.0 / (3.0 + rank);

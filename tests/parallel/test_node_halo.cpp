@@ -18,13 +18,17 @@ namespace
 /// Element "mass" shared equally by its nodes: non-dyadic, so the order of additions shows.
 double scalarContribution(Index e, int npe) { return 1.0 / (3.0 + e) / npe; }
 /// A vector field that depends on element, corner and component, both signs.
-double vectorContribution(Index e, int a, int i) { return std::sin(0.7 * e + 1.9 * a + 0.3 * i) * (1 + e % 5); }
+double vectorContribution(Index e, int a, int i)
+{
+  return std::sin(0.7 * e + 1.9 * a + 0.3 * i) * (1 + e % 5);
+}
 
 /// Per-node sums (3 vector components + scalar) accumulated in ascending element order, as a
 /// rank does it locally, over the elements accepted by `take(global element)`, into nodes
 /// `node_of(global node)`. the elements accepted by `take(global element)`, into nodes `node_of(global)`.
 template <class Take, class NodeOf>
-std::vector<std::array<double, 4>> assemble(const HostMesh &g, size_t num_nodes, Take take, NodeOf node_of)
+std::vector<std::array<double, 4>> assemble(const HostMesh &g, size_t num_nodes, Take take,
+                                            NodeOf node_of)
 {
   std::vector<std::array<double, 4>> v(num_nodes, {0, 0, 0, 0});
   Index e = 0;
@@ -64,8 +68,9 @@ TEST(NodeHalo, SumEqualsRankOrderedSerialAssemblyOnEveryCopy)
     const size_t nl = size_t(d.mesh.numNodes()), ng = size_t(g.numNodes());
 
     // this rank's partial sums on its local nodes, through the local numbering
-    const auto local = assemble(g, nl, [&](Index e) { return c.rank[size_t(e)] == me; },
-                                [&](Index n) { return d.localNode(n); });
+    const auto local = assemble(
+        g, nl, [&](Index e) { return c.rank[size_t(e)] == me; },
+        [&](Index n) { return d.localNode(n); });
     VectorView f("f", nl);
     RealView m("m", nl);
     auto hf = Kokkos::create_mirror_view(f);
@@ -96,9 +101,10 @@ TEST(NodeHalo, SumEqualsRankOrderedSerialAssemblyOnEveryCopy)
     // references from the global mesh: every rank's partials, the holders of each node
     std::vector<std::vector<std::array<double, 4>>> partial;
     for (int r = 0; r < size; ++r)
-      partial.push_back(assemble(g, ng, [&](Index e) { return c.rank[size_t(e)] == r; },
-                                 [](Index n) { return n; }));
-    const auto serial = assemble(g, ng, [](Index) { return true; }, [](Index n) { return n; });
+      partial.push_back(assemble(
+          g, ng, [&](Index e) { return c.rank[size_t(e)] == r; }, [](Index n) { return n; }));
+    const auto serial = assemble(
+        g, ng, [](Index) { return true; }, [](Index n) { return n; });
     // per node: sum of |terms| per component and number of terms (for the round-off bound),
     // and the ranks holding it, all from the global mesh
     std::vector<std::array<double, 4>> magnitude(ng, {0, 0, 0, 0});
@@ -166,7 +172,8 @@ TEST(NodeHalo, SumEqualsRankOrderedSerialAssemblyOnEveryCopy)
     int differing = 0, copies_ok = 0;
     for (const auto &kv : by_node)
     {
-      EXPECT_EQ(kv.second.size(), holders[size_t(kv.first)].size()) << c.name << " node " << kv.first;
+      EXPECT_EQ(kv.second.size(), holders[size_t(kv.first)].size())
+          << c.name << " node " << kv.first;
       for (const Copy &cp : kv.second)
         for (int i = 0; i < 4; ++i)
           differing += bits(cp.v[i]) != bits(kv.second.front().v[i]);
@@ -220,10 +227,10 @@ TEST(NodeHalo, SumEqualsRankOrderedSerialAssemblyOnEveryCopy)
     const long long shared_total = allReduceSum((long long)d.shared.size());
     const double bytes_max = allReduceMax(double(halo.bytesPerVectorSum()));
     const double neighbours_max = allReduceMax(double(halo.numNeighbours()));
-    SCPDYN_ROOT_PRINT("[halo] np %d %s: %d nodes, shared copies %lld, max neighbours %.0f, max bytes"
-                      "/vector sum/rank %.0f, totals differing from serial order %d (rank 0)\n",
-                      size, c.name.c_str(), int(ng), shared_total, neighbours_max, bytes_max,
-                      order_matters);
+    SCPDYN_ROOT_PRINT(
+        "[halo] np %d %s: %d nodes, shared copies %lld, max neighbours %.0f, max bytes"
+        "/vector sum/rank %.0f, totals differing from serial order %d (rank 0)\n",
+        size, c.name.c_str(), int(ng), shared_total, neighbours_max, bytes_max, order_matters);
   }
 }
 

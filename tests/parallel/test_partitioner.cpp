@@ -18,7 +18,8 @@ double jointCutFraction(const std::vector<std::pair<Index, Index>> &pairs,
 {
   size_t cut = 0;
   for (const auto &p : pairs)
-    cut += rank[size_t(faces[size_t(p.first)].element)] != rank[size_t(faces[size_t(p.second)].element)];
+    cut += rank[size_t(faces[size_t(p.first)].element)] !=
+           rank[size_t(faces[size_t(p.second)].element)];
   return pairs.empty() ? 0.0 : double(cut) / double(pairs.size());
 }
 
@@ -92,12 +93,14 @@ TEST(Partitioner, JointPairsOfAStackBondWallAndOfAnOpenGap)
   // 2D stack bond, 4 x 3 bricks of 3 x 2 cells: vertical joints (4-1)*3 with 2 face pairs
   // each, horizontal joints (3-1)*4 with 3 pairs each
   HostMesh wall;
-  appendBrickWall(wall, "w", ElementType::Quad4, {3, 2, 1}, {0, 0, 0}, {0.3, 0.1, 1}, {4, 3, 1}, 0.0);
+  appendBrickWall(wall, "w", ElementType::Quad4, {3, 2, 1}, {0, 0, 0}, {0.3, 0.1, 1}, {4, 3, 1},
+                  0.0);
   const auto faces = extractExternalFaces(wall);
   EXPECT_EQ(jointFacePairs(wall, faces).size(), size_t(3 * 3 * 2 + 2 * 4 * 3));
   // staggered by half a brick (3 cells -> partial bricks of 2 and 1... use 4 cells: 2 + 2)
   HostMesh run;
-  appendBrickWall(run, "r", ElementType::Quad4, {4, 2, 1}, {0, 0, 0}, {0.4, 0.1, 1}, {3, 2, 1}, 0.5);
+  appendBrickWall(run, "r", ElementType::Quad4, {4, 2, 1}, {0, 0, 0}, {0.4, 0.1, 1}, {3, 2, 1},
+                  0.5);
   // course 0: 3 bricks, 2 joints; course 1: 4 pieces, 3 joints; 2 cells high: 5*2 vertical
   // pairs; one horizontal joint 12 cells long
   EXPECT_EQ(jointFacePairs(run, extractExternalFaces(run)).size(), size_t(5 * 2 + 12));

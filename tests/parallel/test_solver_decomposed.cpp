@@ -39,20 +39,22 @@ Trace run(const std::string &yaml, const std::string &name, MPI_Comm comm)
 {
   Solver s(deckFromText(yaml, name), comm);
   Trace t;
-  t.columns = {"time", "dt", "kinetic", "internal", "hourglass", "contact", "external_work",
-               "momentum_x", "momentum_y", "momentum_z"};
+  t.columns = {"time",          "dt",         "kinetic",    "internal",  "hourglass", "contact",
+               "external_work", "momentum_x", "momentum_y", "momentum_z"};
   for (const auto &g : s.gauges())
     t.columns.push_back(g.column);
   auto row = [&] {
     const EnergyReport e = s.energies();
-    std::vector<double> r = {s.time(), s.dt(), e.kinetic, e.internal, e.hourglass, e.contact,
-                             e.external_work, e.momentum[0], e.momentum[1], e.momentum[2]};
+    std::vector<double> r = {s.time(),      s.dt(),       e.kinetic,       e.internal,
+                             e.hourglass,   e.contact,    e.external_work, e.momentum[0],
+                             e.momentum[1], e.momentum[2]};
     for (Real v : s.gaugeValues())
       r.push_back(v);
     t.rows.push_back(r);
   };
   row();
-  while (s.time() < s.deck().end_time && (s.deck().max_cycles < 0 || s.cycles() < s.deck().max_cycles))
+  while (s.time() < s.deck().end_time &&
+         (s.deck().max_cycles < 0 || s.cycles() < s.deck().max_cycles))
   {
     s.cycle();
     row();
@@ -69,10 +71,11 @@ std::string kindOf(const std::string &column)
   if (colon == std::string::npos)
     return column;
   const std::string gauge = column.substr(0, colon), q = column.substr(colon + 1);
-  const char *kind = q[0] == 'v' ? "velocity" : q[0] == 'd' && q.size() == 2 ? "displacement"
-                     : q.size() == 1                                         ? "position"
-                     : q[0] == 's' || q == "pressure"                        ? "stress"
-                                                                             : q.c_str();
+  const char *kind = q[0] == 'v'                      ? "velocity"
+                     : q[0] == 'd' && q.size() == 2   ? "displacement"
+                     : q.size() == 1                  ? "position"
+                     : q[0] == 's' || q == "pressure" ? "stress"
+                                                      : q.c_str();
   return gauge + ":" + kind;
 }
 
@@ -90,7 +93,8 @@ double worstError(const Trace &a, const Trace &b, std::string &column)
   auto scale = [&](size_t j) {
     const std::string &c = a.columns[j];
     std::vector<size_t> cols;
-    if (c == "kinetic" || c == "internal" || c == "hourglass" || c == "contact" || c == "external_work")
+    if (c == "kinetic" || c == "internal" || c == "hourglass" || c == "contact" ||
+        c == "external_work")
       cols = {2, 3, 4, 5, 6};
     else if (c.rfind("momentum", 0) == 0)
       cols = {7, 8, 9};
@@ -225,9 +229,10 @@ parts:
   for (int b = 0; b < blocks; ++b)
   {
     const double x = 0.03 * b, vx = 1.0 - 2.0 * b / (blocks - 1); // squeezed from both ends
-    d << "  - {name: b" << b << ", material: m, mesh: {type: block, element: quad4, elements: [3, 1], "
-      << "origin: [" << x << ", " << 0.002 * (b % 2) << "], size: [0.03, 0.01]}, initial_velocity: ["
-      << vx << ", " << 0.1 * (b % 2) << "]}\n";
+    d << "  - {name: b" << b
+      << ", material: m, mesh: {type: block, element: quad4, elements: [3, 1], "
+      << "origin: [" << x << ", " << 0.002 * (b % 2)
+      << "], size: [0.03, 0.01]}, initial_velocity: [" << vx << ", " << 0.1 * (b % 2) << "]}\n";
   }
   d << R"(contact:
   search_interval: 1
@@ -325,10 +330,10 @@ TEST(SolverDecomposed, CutFacePairGivesOneEqualAndOppositePair)
   EXPECT_EQ(long(copies.size()), long(blocks - 1)) << "one CP per joint";
   EXPECT_EQ(twice, cut ? long(blocks - 1) : 0L) << "each cut CP on both of its ranks";
   EXPECT_EQ(differing, 0);
-  SCPDYN_ROOT_PRINT("[ cut pairs ] %d ranks, %d blocks: %zu CPs, %ld on two ranks; max |F - F_serial| "
-                    "= %.1e N of %.3e N; net force %.1e N\n",
-                    mpiSize(), blocks, copies.size(), twice, worst, scale,
-                    std::fabs(net[0]) + std::fabs(net[1]));
+  SCPDYN_ROOT_PRINT(
+      "[ cut pairs ] %d ranks, %d blocks: %zu CPs, %ld on two ranks; max |F - F_serial| "
+      "= %.1e N of %.3e N; net force %.1e N\n",
+      mpiSize(), blocks, copies.size(), twice, worst, scale, std::fabs(net[0]) + std::fabs(net[1]));
 }
 
 // Every copy of a shared node ends every cycle with the same x and v bits (steps 7 and 10b with

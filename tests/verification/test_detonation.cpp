@@ -42,10 +42,14 @@ struct CjIsentrope
     cj = jwlChapmanJouguet(p.model_params, rho0);
     C = (cj.p - A * std::exp(-R1 * cj.V) - B * std::exp(-R2 * cj.V)) * std::pow(cj.V, 1 + w);
   }
-  Real p(Real V) const { return A * std::exp(-R1 * V) + B * std::exp(-R2 * V) + C * std::pow(V, -(1 + w)); }
+  Real p(Real V) const
+  {
+    return A * std::exp(-R1 * V) + B * std::exp(-R2 * V) + C * std::pow(V, -(1 + w));
+  }
   Real dp(Real V) const
   {
-    return -R1 * A * std::exp(-R1 * V) - R2 * B * std::exp(-R2 * V) - (1 + w) * C * std::pow(V, -(2 + w));
+    return -R1 * A * std::exp(-R1 * V) - R2 * B * std::exp(-R2 * V) -
+           (1 + w) * C * std::pow(V, -(2 + w));
   }
   Real c(Real V) const { return V * std::sqrt(-dp(V) / rho0); }
 };
@@ -356,10 +360,11 @@ TEST(DetonationT8, CylindricalQuietCoreAndSimilarityProfile)
     }
   }
   const Real D = slope(ta, ra), D0 = slope(t0, r0), D45 = slope(t45, r45);
-  std::printf("[T8b cylinder] %ld cycles, %zu cells: core %.5e Pa over %d cells (similarity %.5e, "
-              "error %+.3e), D %.1f m/s (%+.3e), D45/D0 - 1 = %+.3e, profile E2 %.3e, balance %.2e\n",
-              r.cycles, c.p.size(), core, n, exact.p_inner, core / exact.p_inner - 1, D,
-              D / h.cj.D - 1, D45 / D0 - 1, e2, r.balance);
+  std::printf(
+      "[T8b cylinder] %ld cycles, %zu cells: core %.5e Pa over %d cells (similarity %.5e, "
+      "error %+.3e), D %.1f m/s (%+.3e), D45/D0 - 1 = %+.3e, profile E2 %.3e, balance %.2e\n",
+      r.cycles, c.p.size(), core, n, exact.p_inner, core / exact.p_inner - 1, D, D / h.cj.D - 1,
+      D45 / D0 - 1, e2, r.balance);
   // tolerances of verification.md T8b
   EXPECT_NEAR(core / exact.p_inner, 1.0, 0.05);
   EXPECT_NEAR(D / h.cj.D, 1.0, 0.015);

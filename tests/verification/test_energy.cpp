@@ -32,8 +32,8 @@ Drift runVibration(const std::string &yaml, const std::string &name)
     // IE and HG belong to the half step t^{n+1/2}: centre KE there too
     const Real ke = 0.5 * (ke_prev + r.kinetic);
     ke_prev = r.kinetic;
-    d.max_physical = std::max(
-        d.max_physical, std::abs(ke + r.internal + r.hourglass - e0 - r.external_work) / e0);
+    d.max_physical = std::max(d.max_physical,
+                              std::abs(ke + r.internal + r.hourglass - e0 - r.external_work) / e0);
     d.max_balance = std::max(d.max_balance, std::abs(r.balance_error));
     ie_max = std::max(ie_max, r.internal);
     d.hourglass_fraction = r.hourglass / ie_max;

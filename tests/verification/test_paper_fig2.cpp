@@ -16,7 +16,7 @@ using namespace scpdyn;
 namespace
 {
 constexpr Real kImpact = 2 * 0.5 * 1e-3 / 4500.0; // GAP / V0 of make_fig2_decks.py: 2 steps [s]
-constexpr Real kThreshold = 100.0;  // arrival: first v > 100 m/s (docs/theory.md 14.1)
+constexpr Real kThreshold = 100.0; // arrival: first v > 100 m/s (docs/theory.md 14.1)
 
 struct Signal
 {

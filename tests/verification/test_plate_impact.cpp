@@ -30,7 +30,11 @@ std::string deckFor(const std::string &element)
     os << "]";
     return os.str();
   };
-  auto ivec = [&](int a) { return d1 ? "[" + std::to_string(a) + "]" : d3 ? "[" + std::to_string(a) + ", 1, 1]" : "[" + std::to_string(a) + ", 1]"; };
+  auto ivec = [&](int a) {
+    return d1   ? "[" + std::to_string(a) + "]"
+           : d3 ? "[" + std::to_string(a) + ", 1, 1]"
+                : "[" + std::to_string(a) + ", 1]";
+  };
   std::ostringstream d;
   d << "dimension: " << dim << "\n"
     << "time: {end: 40.0e-6, courant: 0.5}\n"

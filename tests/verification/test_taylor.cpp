@@ -127,8 +127,8 @@ void checkAgainstTest(const char *name, Real length, Real foot,
   for (const auto &yr : profile)
   {
     const Real ratio = radiusAt(r.side, yr.first) / yr.second;
-    std::printf("[T7b %s] side radius at y = %.2f mm: %+.2f %% of the test\n", name,
-                1e3 * yr.first, 100 * (ratio - 1));
+    std::printf("[T7b %s] side radius at y = %.2f mm: %+.2f %% of the test\n", name, 1e3 * yr.first,
+                100 * (ratio - 1));
     EXPECT_NEAR(ratio, 1.0, profile_tol) << "y = " << yr.first;
   }
 }
@@ -142,8 +142,8 @@ TEST(TaylorBarT7b, Steel4340At208)
   // against the test profile (JC 1983 p. 546 as digitized in plot_taylor.py TEST_PROFILES,
   // interpolated there: 4.084 / 3.935 / 3.867 mm). Measured at 10 x 66: -0.3, -1.3, -1.3 %.
   // 3 % = digitizing a 4 mm radius off a printed figure (~1-2 %) plus the model's share
-  const std::pair<Real, Real> test[] = {{5.624e-3, 4.084e-3}, {8.998e-3, 3.935e-3},
-                                        {12.373e-3, 3.867e-3}};
+  const std::pair<Real, Real> test[] = {
+      {5.624e-3, 4.084e-3}, {8.998e-3, 3.935e-3}, {12.373e-3, 3.867e-3}};
   checkAgainstTest("taylor_4340_208", 22.48e-3, 11.1e-3, test, 0.03);
 }
 
@@ -178,7 +178,7 @@ TEST(TaylorBarT7b, OfhcCopperWithZaShapedCurveMeetsTolerance)
   // digitized, interpolated there: 5.074 / 4.957 / 4.703 mm at 25 / 40 / 55 % of 16.205 mm);
   // 5 %: digitizing (~1-3 %, the copper foot reads 13.68 against the quoted 13.56 mm) plus
   // the fitted curve's 2.5 % rms misfit to ZA
-  const std::pair<Real, Real> test[] = {{4.0513e-3, 5.074e-3}, {6.482e-3, 4.957e-3},
-                                        {8.9128e-3, 4.703e-3}};
+  const std::pair<Real, Real> test[] = {
+      {4.0513e-3, 5.074e-3}, {6.482e-3, 4.957e-3}, {8.9128e-3, 4.703e-3}};
   checkAgainstTest("taylor_ofhc_190_zafit", 16.21e-3, 13.56e-3, test, 0.05);
 }
