@@ -26,11 +26,12 @@
 # was edited, input.yaml (the deck that ran); OUT_DIR/runs.tsv has every run's exit status
 # and wall time. Two paper decks end with exit status 3 on purpose (fig2_a1e-7_explicit and
 # fig5_explicit_S0.5 show the explicit contact going unstable); their outputs up to the stop
-# are kept and compared like any other. Time: 1thread about 95 s, 2threads 110-300 s and
-# 2ranks about 245 s on the 2-core host (the longer times while others compiled on it), so
-# no deck is shortened. --quick leaves out the perf decks and stops every deck after 1000
-# cycles (time.max_cycles in a copy of the deck; the Taylor bars run 5 000-31 000 cycles). A
-# quick run is only comparable with another quick run (compare refuses a mix).
+# are kept and compared like any other. Time on the 2-core host, shared with others' builds
+# (load average 2-7): 375-500 s for the whole run (1thread 67-95 s, 2threads 110-300 s,
+# 2ranks 125-245 s), so no deck is shortened. --quick (155 s) leaves out the perf decks and
+# stops every deck after 1000 cycles (time.max_cycles in a copy of the deck; the Taylor bars
+# run 5 000-31 000 cycles). A quick run is only comparable with another quick run (compare
+# refuses a mix).
 #
 # Why 2threads uses scatter: gather. With scatter: atomic (what the perf decks ask for) the
 # element forces are added to the nodes with atomic adds in whatever order the threads reach
