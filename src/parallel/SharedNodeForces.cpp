@@ -3,25 +3,29 @@
 namespace scpdyn
 {
 
+namespace
+{
+
+/// to(k) = from(k) at every shared node k.
+void copyShared(const IndexView &shared, const VectorView &from, const VectorView &to)
+{
+  Kokkos::parallel_for(
+      "scpdyn::comm::copyShared", Kokkos::RangePolicy<ExecSpace>(0, Index(shared.extent(0))),
+      KOKKOS_LAMBDA(const Index s) {
+        const Index k = shared(s);
+        for (int d = 0; d < 3; ++d)
+          to(k, d) = from(k, d);
+      });
+}
+
+} // namespace
+
 void sumSharedPartials(NodeHalo &halo, const IndexView &shared, const VectorView &partial,
                        const VectorView &scratch, const VectorView &total)
 {
-  const Index ns = Index(shared.extent(0));
-  Kokkos::parallel_for(
-      "scpdyn::comm::packPartials", Kokkos::RangePolicy<ExecSpace>(0, ns),
-      KOKKOS_LAMBDA(const Index s) {
-        const Index k = shared(s);
-        for (int d = 0; d < 3; ++d)
-          scratch(k, d) = partial(k, d);
-      });
+  copyShared(shared, partial, scratch);
   halo.sum(scratch);
-  Kokkos::parallel_for(
-      "scpdyn::comm::setTotals", Kokkos::RangePolicy<ExecSpace>(0, ns),
-      KOKKOS_LAMBDA(const Index s) {
-        const Index k = shared(s);
-        for (int d = 0; d < 3; ++d)
-          total(k, d) = scratch(k, d);
-      });
+  copyShared(shared, scratch, total);
 }
 
 void sumSharedLoads(NodeHalo &halo, const IndexView &shared, const VectorView &partial,
