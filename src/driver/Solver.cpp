@@ -20,7 +20,6 @@ Solver::~Solver() = default;
 void Solver::startCycles()
 {
   // the first time step, and the energies the balance starts from
-  _controls = _m.controls;
   NodeSums s = nodeSums(_m.nodes, _m.dd ? _m.dd->owned_device : IndexView());
   TimeStepLimits first;
   first.element = _m.initial_element_step;
@@ -88,7 +87,7 @@ void Solver::stepZeroForces()
 void Solver::stepElementSolvers()
 {
   ScopedStep t(_timers, "06_element_solvers");
-  _controls = elementControls();
+  const ElementControls controls = elementControls();
   if (_m.sweep.active) // step 12 of the early nodes, in this step's sweep
   {
     _m.sweep.node =
@@ -96,9 +95,9 @@ void Solver::stepElementSolvers()
                        _m.dd ? _m.dd->owned_device : IndexView(), _m.deck.gravity.data());
     _m.sweep.loads = _m.external_loads;
   }
-  const ElementStepResult r = computeElementForces(_m.groups, _controls, _m.nodes, _m.elems,
+  const ElementStepResult r = computeElementForces(_m.groups, controls, _m.nodes, _m.elems,
                                                    _m.materials, _m.corners, _m.sweep);
-  if (_controls.gather)
+  if (controls.gather)
     gatherCornerForces(_m.nodes, _m.corners);
   std::string error;
   if (!r.ok())

@@ -60,7 +60,7 @@ public:
   /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
   ElementControls elementControls() const
   {
-    ElementControls c = _controls;
+    ElementControls c = _m.controls;
     c.dt = _dt;
     c.half_time = _time + 0.5 * _dt;
     return c;
@@ -143,8 +143,7 @@ private:
   bool _forces_zeroed = false; ///< step 12 left f_int = 0 and f_ext = m g for step 5
   bool _check_sweep = nodeSweepCheckEnabled(); ///< LateNodes.hpp's check mode
   EarlyNodeSnapshot _early_snapshot;
-  ElementControls _controls; ///< this cycle's element controls
-  TimeStepLimits _limits;    ///< this cycle's limits on the next step, this rank
+  TimeStepLimits _limits; ///< this cycle's limits on the next step, this rank
   Real _time = 0;
   Real _dt = 0;
   Real _dt_next = 0;
