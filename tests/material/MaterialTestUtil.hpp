@@ -30,6 +30,61 @@ inline MaterialSpec makeSpec(const std::string &model, const std::string &eos,
   return s;
 }
 
+/// \brief The parameter sets the tests share (docs/theory.md, materials): AISI 4340 steel
+/// (Johnson-Cook, Mie-Grueneisen), TNT (JWL with programmed burn), the paper's limestone
+/// (geomaterial).
+inline MaterialSpec steel4340()
+{
+  return makeSpec("johnson_cook", "mie_gruneisen",
+                  {{"density", 7830},
+                   {"shear_modulus", 77.5e9},
+                   {"A", 792e6},
+                   {"B", 510e6},
+                   {"n", 0.26},
+                   {"C", 0.014},
+                   {"m", 1.03},
+                   {"melt_temperature", 1793},
+                   {"specific_heat", 477},
+                   {"eos.c0", 4578},
+                   {"eos.s", 1.33},
+                   {"eos.gamma0", 1.67}});
+}
+
+inline MaterialSpec tnt()
+{
+  return makeSpec("high_explosive", "jwl",
+                  {{"density", 1630},
+                   {"eos.A", 371.2e9},
+                   {"eos.B", 3.231e9},
+                   {"eos.R1", 4.15},
+                   {"eos.R2", 0.95},
+                   {"eos.omega", 0.30},
+                   {"eos.E0", 7.0e9},
+                   {"D", 6930},
+                   {"pcj", 21.0e9}});
+}
+
+inline MaterialSpec limestone()
+{
+  return makeSpec("geomaterial", "linear",
+                  {{"density", 2600},
+                   {"youngs_modulus", 43.875e9},
+                   {"poisson_ratio", 0.25},
+                   {"porosity", 0.04},
+                   {"crush_pressure", 200e6},
+                   {"lock_pressure", 2e9},
+                   {"solid_bulk_modulus", 70e9},
+                   {"intact_strength", 50e6},
+                   {"intact_friction", 1.5},
+                   {"max_strength", 1.5e9},
+                   {"damaged_friction", 1.2},
+                   {"tensile_strength", 8e6},
+                   {"damage_strain", 0.01},
+                   {"dilatancy", 0.1},
+                   {"dilatancy_pressure", 250e6},
+                   {"compaction_hardening", 0.2}});
+}
+
 /// \brief One material point: state plus the density it is at.
 struct MaterialPoint
 {

@@ -13,28 +13,7 @@ namespace scpdyn::test
 namespace
 {
 
-// docs/theory_materials.md parameter sets (limestone: representative; concrete: HJC 48 MPa)
-MaterialSpec limestone()
-{
-  return makeSpec("geomaterial", "linear",
-                  {{"density", 2600},
-                   {"youngs_modulus", 43.875e9},
-                   {"poisson_ratio", 0.25},
-                   {"porosity", 0.04},
-                   {"crush_pressure", 200e6},
-                   {"lock_pressure", 2e9},
-                   {"solid_bulk_modulus", 70e9},
-                   {"intact_strength", 50e6},
-                   {"intact_friction", 1.5},
-                   {"max_strength", 1.5e9},
-                   {"damaged_friction", 1.2},
-                   {"tensile_strength", 8e6},
-                   {"damage_strain", 0.01},
-                   {"dilatancy", 0.1},
-                   {"dilatancy_pressure", 250e6},
-                   {"compaction_hardening", 0.2}});
-}
-
+// Parameter sets of docs/theory.md (limestone: MaterialTestUtil.hpp; concrete: HJC 48 MPa)
 MaterialSpec concrete()
 {
   return makeSpec("geomaterial", "linear",
