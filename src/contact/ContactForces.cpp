@@ -214,14 +214,8 @@ Real ContactSystem::stableTimeStep(const NodeFields &nodes, const ElementFields 
         cpVelocities(F, cp, p, P.velocity, v, V1, V2);
         for (int d = 0; d < 3; ++d)
           Vn += (V1[d] - V2[d]) * cp.normal(p, d);
-        const Real mu = arealReducedMass(F.mass(f1), cp.face_area1(p), F.rigid(f1) != 0, F.mass(f2),
-                                         cp.face_area2(p), F.rigid(f2) != 0);
-        const Index e1 = F.element(f1), e2 = F.element(f2);
-        // a ghost face's element is on another rank, which sent its density (step 8)
-        const Real rho1 = e1 >= 0 ? emass(e1) / volume(e1) : F.density(f1);
-        const Real rho2 = e2 >= 0 ? emass(e2) / volume(e2) : F.density(f2);
-        const Real rho = 0.5 * (rho1 + rho2);
-        const Real dt_c = contactTimeStep(P, cp.state(p), Vn, dt_element, mu, rho);
+        const Real dt_c = explicitCpTimeStep(F, P, cp.state(p), f1, f2, cp.face_area1(p),
+                                             cp.face_area2(p), Vn, emass, volume, dt_element);
         m = dt_c < m ? dt_c : m;
       },
       Kokkos::Min<Real>(dt_min));

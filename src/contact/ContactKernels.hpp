@@ -3,6 +3,7 @@
 /// \brief Internal to the contact room: small device functions shared by the force kernels
 /// (ContactForces.cpp) and the constraint solvers (ContactConstraints.cpp).
 #include "contact/ContactData.hpp"
+#include "contact/JointLaw.hpp"
 
 namespace scpdyn
 {
@@ -91,6 +92,22 @@ KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonP
 KOKKOS_INLINE_FUNCTION bool ownsPlane(const ContactFaceData &F, const CommonPlaneData &cp, Index p)
 {
   return F.ghost(cp.face1(p)) == 0;
+}
+
+/// The explicit limit (19) of a CP between faces f1 and f2 of areas A1, A2 closing at Vn, with
+/// history s, over the horizon dt_el [s]. A ghost face's element is on another rank, which
+/// sent its density (step 8).
+KOKKOS_INLINE_FUNCTION Real explicitCpTimeStep(const ContactFaceData &F, const JointParams &P,
+                                               const CpState &s, Index f1, Index f2, Real A1,
+                                               Real A2, Real Vn, const RealView &emass,
+                                               const RealView &volume, Real dt_el)
+{
+  const Real mu =
+      arealReducedMass(F.mass(f1), A1, F.rigid(f1) != 0, F.mass(f2), A2, F.rigid(f2) != 0);
+  const Index e1 = F.element(f1), e2 = F.element(f2);
+  const Real rho1 = e1 >= 0 ? emass(e1) / volume(e1) : F.density(f1);
+  const Real rho2 = e2 >= 0 ? emass(e2) / volume(e2) : F.density(f2);
+  return contactTimeStep(P, s, Vn, dt_el, mu, 0.5 * (rho1 + rho2));
 }
 
 } // namespace contact_kernels

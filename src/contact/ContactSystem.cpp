@@ -172,6 +172,48 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
   _max_count = std::max(_max_count, owned);
 }
 
+Real ContactSystem::firstTimeStep(const NodeFields &nodes, const ElementFields &elements,
+                                  Real dt_element)
+{
+  if (!_has_explicit || (_faces.count == 0 && !_comm.sum))
+    return 1e300;
+  const Index max_count = _max_count;
+  sortIntoBins(nodes, 0.0, 0);
+  detect(nodes, 0.0);
+  const ContactFaceData F = _faces;
+  const CommonPlaneData cp = _cp;
+  auto x = nodes.x, v = nodes.v;
+  auto emass = elements.mass, volume = elements.volume;
+  const int dim = _dim;
+  const bool axisym = _axisym;
+  Real dt_min = 1e300;
+  Kokkos::parallel_reduce(
+      "scpdyn::contact::firstTimeStep", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+      KOKKOS_LAMBDA(const Index p, Real &m) {
+        const JointParams &P = cp.params(p);
+        if (P.option != ContactOption::Explicit)
+          return;
+        const Index f1 = cp.face1(p), f2 = cp.face2(p);
+        Real x1[kMaxFaceNodes][3], x2[kMaxFaceNodes][3];
+        const CpGeometry g = pairGeometry(F, f1, f2, x, v, 0.0, dim, axisym, x1, x2);
+        if (!cpIsActive(g)) // as in step 12: a CP without overlap does not limit
+          return;
+        Real V1[3], V2[3], Vn = 0;
+        contact_kernels::faceVelocity(F, f1, v, V1);
+        contact_kernels::faceVelocity(F, f2, v, V2);
+        for (int d = 0; d < 3; ++d)
+          Vn += (V1[d] - V2[d]) * g.n[d];
+        const Real dt_c = contact_kernels::explicitCpTimeStep(F, P, cp.state(p), f1, f2, g.A1, g.A2,
+                                                              Vn, emass, volume, dt_element);
+        m = dt_c < m ? dt_c : m;
+      },
+      Kokkos::Min<Real>(dt_min));
+  _cp = allocatePlanes(0);
+  _binned_cycle = -1;
+  _max_count = max_count;
+  return dt_min;
+}
+
 Real ContactSystem::globalSum(Real local) const
 {
   if (_comm.sum)

@@ -77,6 +77,12 @@ public:
   /// when no explicit CP limits.
   Real stableTimeStep(const NodeFields &nodes, const ElementFields &elements,
                       Real dt_element) const;
+  /// \brief Before cycle 0: the limit (19) over the pairs the first search finds at x^0 with
+  /// v^0, so that it holds from the first cycle of a CP that exists at t = 0 (bodies touching or
+  /// within one step of each other). The pairs are then dropped: cycle 0 searches as always
+  /// and the CPs it creates start from its own step. Collective in a decomposed run (the ghost
+  /// faces must be set) [s]; 1e300 without explicit contacts.
+  Real firstTimeStep(const NodeFields &nodes, const ElementFields &elements, Real dt_element);
 
   // Decomposed runs: the Solver sets the communication once and, on search cycles
   // (step 4), the ghost faces; each rank computes every CP with at least one of its own faces,

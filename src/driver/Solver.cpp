@@ -23,7 +23,15 @@ void Solver::startCycles()
   NodeSums s = nodeSums(_m.nodes, _m.dd ? _m.dd->owned_device : IndexView());
   TimeStepLimits first;
   first.element = _m.initial_element_step;
-  _dt_next = nextTimeStep(first, timeStepControls(), s, _m.dd ? _m.comm : MPI_COMM_NULL);
+  const MPI_Comm comm = _m.dd ? _m.comm : MPI_COMM_NULL;
+  if (_m.contact && _m.contact->hasExplicit())
+  { // (19) from the first cycle of the CPs that exist at t = 0 (the pairs of cycle 0's search)
+    stepExchangeFaceConnectivity();
+    stepExchangeGhostFaceData();
+    first.contact =
+        _m.contact->firstTimeStep(_m.nodes, _m.elems, elementStep(first, timeStepControls(), comm));
+  }
+  _dt_next = nextTimeStep(first, timeStepControls(), s, comm);
   _last_sums = s;
   _kinetic_mid = s.kinetic;
   _initial_energy = 0;

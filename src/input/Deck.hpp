@@ -206,7 +206,7 @@ struct Deck
 
   // numerics
   Real hourglass_coefficient = 0.05;
-  HourglassForm hourglass_type = HourglassForm::Viscous;
+  HourglassForm hourglass_type = HourglassForm::Stiffness;
   Real bulk_viscosity_linear = 0.06;
   Real bulk_viscosity_quadratic = 1.5;
   ScatterMode scatter = ScatterMode::Gather;

@@ -7,7 +7,8 @@
 // 3. explicit runs that docs/theory.md 6.2 allows must not stop at a check "closure <= a" (with
 //    the cap the closure is not bounded by a);
 // 4. a CP whose faces slide apart must not count as divergence;
-// 5. a joint closed by more than half a face must keep its CP, or the blocks pass through.
+// 5. a joint closed by more than half a face must keep its CP, or the blocks pass through;
+// 6. the explicit limit (19) must hold from a CP's first cycle, at t = 0 included.
 #include "ContactTestUtil.hpp"
 #include "contact/CommonPlaneGeometry.hpp"
 #include "contact/ContactChecks.hpp"
@@ -365,4 +366,69 @@ TEST(ContactRegression, ClosureBeyondHalfAFaceKeepsTheCp)
   EXPECT_NEAR(g[0], 500.0, 10.0); // V/2, 2 %
   RecordProperty("closure_max_mm", sci(closure_max * 1e3));
   RecordProperty("v_interface", sci(g[0]));
+}
+
+// ------------------------------------------------------- 6. explicit limit from cycle 0 ----
+
+/// Two 4 x 4 mm blocks of 4 x 4 quads, the left one at 1 km/s, the right one `gap_mm` away;
+/// explicit joint a = 0.1 mm, E0 = 0.5 GPa, the default limit (19), search every 2 cycles.
+std::string explicitApproachDeck(double gap_mm)
+{
+  char origin[64];
+  std::snprintf(origin, sizeof origin, "[%.9g, 0.0]", 0.004 + gap_mm * 1e-3);
+  return "dimension: 2\ntime: {end: 2.0e-6, courant: 0.5}\n" + kLimestone +
+         "parts:\n"
+         "  - {name: a, material: ls, mesh: {elements: [4, 4], origin: [0.0, 0.0], size: [0.004, "
+         "0.004]}, initial_velocity: [1000.0, 0.0]}\n"
+         "  - {name: b, material: ls, mesh: {elements: [4, 4], origin: " +
+         std::string(origin) +
+         ", size: [0.004, 0.004]}}\n"
+         "contact:\n  search_interval: 2\n  surfaces:\n    - {name: j, part: \"*\", option: "
+         "explicit, a: 0.1, E0: 0.5, G: 0.3, C: 0.0, phi0: 38, phi1: 38}\n";
+}
+
+/// Runs explicitApproachDeck(gap_mm) to 2 us: the largest closure / aperture, that after
+/// cycle 0, and the first dt.
+void runExplicitApproach(double gap_mm, double &worst, double &first, double &dt0)
+{
+  Solver s(deckFromText(explicitApproachDeck(gap_mm), "explicit_approach"));
+  worst = -1e300;
+  dt0 = 0;
+  while (s.time() < 2.0e-6)
+  {
+    ASSERT_NO_THROW(s.cycle()) << "cycle " << s.cycles();
+    worst = std::max(worst, maxClosureRatio(cps(s)));
+    if (s.cycles() == 1)
+      dt0 = s.dt(), first = worst;
+  }
+}
+
+// Touching at t = 0: the element step (S h/c = 0.5 x 1 mm / 4500 m/s = 1.1e-7 s) closes
+// 1000 m/s x 1.1e-7 s = 1.1 apertures in cycle 0 and an element inverts in cycle 1, unless (19)
+// limits cycle 0 too. Its closure predicted over the element step is past the cap, so (19) is
+// at Emax: 3.6e-9 s, 30x below the element step, and cycle 0 closes the joint by Vn dt = 0.036 a.
+// At 1 km/s the joint is then driven into its cap (6.2: closure may pass a there), so the bound
+// of the whole run is well inside the divergence check's 2 a.
+TEST(ContactRegression, ExplicitLimitHoldsInTheFirstCycle)
+{
+  double worst = 0, first = 0, dt0 = 0;
+  runExplicitApproach(0.0, worst, first, dt0);
+  EXPECT_LT(dt0, 0.1 * 0.5 * 1e-3 / 4500.0);
+  EXPECT_LT(first, 0.05);
+  EXPECT_GT(worst, 0.3); // the joint did load
+  EXPECT_LT(worst, 1.5);
+  RecordProperty("first_dt", sci(dt0));
+  RecordProperty("max_u_over_a", sci(worst));
+}
+
+// 1.5 mm apart (more than the search gap h_max = 1 mm at cycle 0): the pair is found by a later
+// search while still open, and (19) of its open CP limits every cycle before it closes.
+TEST(ContactRegression, ExplicitLimitHoldsForPairsASearchFinds)
+{
+  double worst = 0, first = 0, dt0 = 0;
+  runExplicitApproach(1.5, worst, first, dt0);
+  EXPECT_GT(dt0, 1e-7); // no CP at t = 0: the element step
+  EXPECT_GT(worst, 0.3);
+  EXPECT_LT(worst, 1.5);
+  RecordProperty("max_u_over_a", sci(worst));
 }

@@ -24,7 +24,7 @@ const char *kFullDeck = R"(title: full test deck
 dimension: 3
 time: {end: 1.0e-3, courant: 0.8, dt_max: 1.0e-6, max_cycles: 5000}
 numerics:
-  hourglass: {type: stiffness, coefficient: 0.1}
+  hourglass: {type: viscous, coefficient: 0.1}
   bulk_viscosity: {linear: 0.1, quadratic: 1.2}
   scatter: gather
   node_update: separate
@@ -216,7 +216,7 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(d.courant, 0.8);
   EXPECT_EQ(d.dt_max, 1.0e-6);
   EXPECT_EQ(d.max_cycles, 5000);
-  EXPECT_EQ(d.hourglass_type, HourglassForm::Stiffness);
+  EXPECT_EQ(d.hourglass_type, HourglassForm::Viscous);
   EXPECT_EQ(d.hourglass_coefficient, 0.1);
   EXPECT_EQ(d.bulk_viscosity_linear, 0.1);
   EXPECT_EQ(d.bulk_viscosity_quadratic, 1.2);
@@ -300,7 +300,7 @@ TEST(DeckParser, MinimalDeckGetsDocumentedDefaults)
   EXPECT_EQ(d.courant, 0.5);
   EXPECT_EQ(d.dt_max, 1e30);
   EXPECT_EQ(d.max_cycles, -1);
-  EXPECT_EQ(d.hourglass_type, HourglassForm::Viscous);
+  EXPECT_EQ(d.hourglass_type, HourglassForm::Stiffness);
   EXPECT_EQ(d.hourglass_coefficient, 0.05);
   EXPECT_EQ(d.bulk_viscosity_linear, 0.06);
   EXPECT_EQ(d.bulk_viscosity_quadratic, 1.5);

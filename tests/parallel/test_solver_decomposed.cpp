@@ -200,6 +200,11 @@ TEST(SolverDecomposed, BlockImpact2DMatchesSerial)
   expectInvariant("block impact 2D", "block_impact_2d.yaml", 50);
 }
 
+TEST(SolverDecomposed, ExplicitTouching2DMatchesSerial)
+{
+  expectInvariant("explicit joint touching at t = 0, 2D", "explicit_touching_2d.yaml", 200);
+}
+
 TEST(SolverDecomposed, StickyBrickStack3DMatchesSerial)
 {
   expectInvariant("sticky brick stack 3D", "brick_stack_3d_sticky.yaml", 80);
