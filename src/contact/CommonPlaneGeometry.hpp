@@ -399,6 +399,41 @@ KOKKOS_INLINE_FUNCTION void nodalWeights(const Real x[][3], int nn, const CpGeom
   pocWeights(x, nn, g, w);
 }
 
+/// \brief Tie points of a sticky CP in 2D (docs/theory.md 11.2): the two Gauss points of the
+/// overlap segment on the CP line, mid +- L/(2 sqrt 3), and the shape-function weights of both
+/// faces at each (w1[q], w2[q], q = 0, 1). Tying V1 = V2 at two points makes two coincident
+/// segments move as one (the node-to-node tie of a merged mesh); one point per CP, at the POC,
+/// left their relative zig-zag free.
+KOKKOS_INLINE_FUNCTION void tieWeights2D(const Real x1[][3], const Real x2[][3],
+                                         const CpGeometry &g, Real w1[2][kMaxFaceNodes],
+                                         Real w2[2][kMaxFaceNodes])
+{
+  using namespace contact_math;
+  Real lo = -1e300, hi = 1e300;
+  for (int f = 0; f < 2; ++f)
+  {
+    const Real(*x)[3] = f == 0 ? x1 : x2;
+    Real flo = 1e300, fhi = -1e300;
+    for (int i = 0; i < 2; ++i)
+    {
+      const Real d[3] = {x[i][0] - g.x_cp[0], x[i][1] - g.x_cp[1], 0};
+      const Real xi = dot(d, g.e1);
+      flo = min(flo, xi), fhi = max(fhi, xi);
+    }
+    lo = max(lo, flo), hi = min(hi, fhi);
+  }
+  const Real half = 0.5 / kmath::sqrt(3.0) * max(0.0, hi - lo);
+  for (int q = 0; q < 2; ++q)
+  {
+    const Real xi = 0.5 * (lo + hi) + (q == 0 ? -half : half);
+    CpGeometry gq = g;
+    for (int d = 0; d < 3; ++d)
+      gq.x_poc[d] = g.x_cp[d] + xi * g.e1[d];
+    pocWeights(x1, 2, gq, w1[q]);
+    pocWeights(x2, 2, gq, w2[q]);
+  }
+}
+
 /// \brief Activity test of 3.2/3.4: Ac > epsilon_A * min(A1, A2).
 KOKKOS_INLINE_FUNCTION bool cpIsActive(const CpGeometry &g)
 {

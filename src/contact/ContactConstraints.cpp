@@ -8,6 +8,11 @@
 // with node masses shared among the CPs are stable but converge slowly at T-junctions and
 // along long interfaces (the face-average ties of a straight interface form a chain whose
 // operator has eigenvalues 1 + cos(k pi/(N+1))), so a tolerance needs a Krylov solver.
+//
+// The unknowns are per tie row: a sticky CP in 2D ties V1 = V2 at the two Gauss points of its
+// overlap (cp_geometry::tieWeights2D), each with the shape-function weights of both faces there
+// (docs/theory.md 11.2); a slide line, and a 3D or 1D sticky CP, acts at its POC (row 0 of its
+// CP, the others idle). Row c belongs to CP c / Q, Q = ContactSystem::_tie_points.
 #include "contact/ContactKernels.hpp"
 #include "contact/ContactSystem.hpp"
 #include "contact/JointConstraints.hpp"
@@ -26,12 +31,12 @@ enum TieMode : int
   TieNormal = 2 ///< slide line in compression: (V1 - V2).n = gap/dt (D14)
 };
 
-/// dt sum w^2/M over the nodes of CP p, per component d whose velocity is free (the diagonal
-/// of the tie operator); for a normal tie, the same along n.
+/// dt sum w^2/M over the nodes of tie row c (of CP p), per component d whose velocity is free
+/// (the diagonal of the tie operator); for a normal tie, the same along n.
 KOKKOS_INLINE_FUNCTION void tieDiagonal(const ContactFaceData &F, const CommonPlaneData &cp,
-                                        Index p, const RealView &mass,
-                                        const DeviceView<int *[3]> &bc, Real dt, int dim, Real D[3],
-                                        Real &Dn)
+                                        const TieWeights &tw, Index c, Index p,
+                                        const RealView &mass, const DeviceView<int *[3]> &bc,
+                                        Real dt, int dim, Real D[3], Real &Dn)
 {
   D[0] = D[1] = D[2] = Dn = 0;
   for (int side = 0; side < 2; ++side)
@@ -40,13 +45,56 @@ KOKKOS_INLINE_FUNCTION void tieDiagonal(const ContactFaceData &F, const CommonPl
     for (int a = 0; a < F.num_nodes(f); ++a)
     {
       const Index k = F.nodes(f, a);
-      const Real w = side == 0 ? cp.w1(p, a) : cp.w2(p, a);
+      const Real w = side == 0 ? tw.w1(c, a) : tw.w2(c, a);
       for (int d = 0; d < dim; ++d)
         if (bc(k, d) < 0)
         {
           D[d] += dt * w * w / mass(k);
           Dn += dt * w * w * cp.normal(p, d) * cp.normal(p, d) / mass(k);
         }
+    }
+  }
+}
+
+/// Velocity of face `side` (0: face 1, 1: face 2) at tie row c of CP p.
+KOKKOS_INLINE_FUNCTION void rowVelocity(const ContactFaceData &F, const CommonPlaneData &cp,
+                                        const TieWeights &tw, Index c, Index p, int side,
+                                        const VectorView &v, Real V[3])
+{
+  const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
+  V[0] = V[1] = V[2] = 0;
+  for (int a = 0; a < F.num_nodes(f); ++a)
+  {
+    const Real w = side == 0 ? tw.w1(c, a) : tw.w2(c, a);
+    for (int d = 0; d < 3; ++d)
+      V[d] += w * v(F.nodes(f, a), d);
+  }
+}
+
+/// The force Fv of tie row c of CP p on its own faces' nodes: -w1 Fv on face 1, +w2 Fv on
+/// face 2, into `out` as a force (dt_over_mass = false) or a velocity change dt Fv w / M of the
+/// free components (true). A ghost face gets nothing: its own rank adds that side.
+KOKKOS_INLINE_FUNCTION void rowScatter(const ContactFaceData &F, const CommonPlaneData &cp,
+                                       const TieWeights &tw, Index c, Index p, const Real Fv[3],
+                                       const VectorView &out, bool dt_over_mass,
+                                       const RealView &mass, const DeviceView<int *[3]> &bc,
+                                       Real dt, int dim)
+{
+  for (int side = 0; side < 2; ++side)
+  {
+    const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
+    if (F.ghost(f))
+      continue;
+    const Real sign = side == 0 ? -1.0 : 1.0;
+    for (int a = 0; a < F.num_nodes(f); ++a)
+    {
+      const Index k = F.nodes(f, a);
+      const Real w = sign * (side == 0 ? tw.w1(c, a) : tw.w2(c, a));
+      for (int d = 0; d < dim; ++d)
+        if (!dt_over_mass)
+          Kokkos::atomic_add(&out(k, d), w * Fv[d]);
+        else if (bc(k, d) < 0)
+          Kokkos::atomic_add(&out(k, d), w * Fv[d] * dt / mass(k));
     }
   }
 }
@@ -87,12 +135,13 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
 {
   const ContactFaceData F = _faces;
   const CommonPlaneData cp = _cp;
+  const TieWeights tw = _tie;
   auto dv = _dv;
   auto mass = nodes.mass;
   auto bc = nodes.bc;
   auto used = _faces.nodes_used;
   auto mode = _tie_mode;
-  const int dim = _dim;
+  const int dim = _dim, Q = _tie_points;
   Kokkos::parallel_for(
       "scpdyn::contact::tieZero", Kokkos::RangePolicy<ExecSpace>(0, Index(used.extent(0))),
       KOKKOS_LAMBDA(const Index i) {
@@ -100,25 +149,12 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
           dv(used(i), d) = 0;
       });
   Kokkos::parallel_for(
-      "scpdyn::contact::tieScatter", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-      KOKKOS_LAMBDA(const Index p) {
-        if (mode(p) == TieNone)
+      "scpdyn::contact::tieScatter", Kokkos::RangePolicy<ExecSpace>(0, cp.count * Q),
+      KOKKOS_LAMBDA(const Index c) {
+        if (mode(c) == TieNone)
           return;
-        for (int side = 0; side < 2; ++side)
-        {
-          const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
-          const Real sign = side == 0 ? -1.0 : 1.0;
-          if (F.ghost(f))
-            continue; // its own rank adds this side
-          for (int a = 0; a < F.num_nodes(f); ++a)
-          {
-            const Index k = F.nodes(f, a);
-            const Real w = sign * (side == 0 ? cp.w1(p, a) : cp.w2(p, a));
-            for (int d = 0; d < dim; ++d)
-              if (bc(k, d) < 0)
-                Kokkos::atomic_add(&dv(k, d), w * force(p, d) * dt / mass(k));
-          }
-        }
+        const Real f[3] = {force(c, 0), force(c, 1), force(c, 2)};
+        rowScatter(F, cp, tw, c, c / Q, f, dv, true, mass, bc, dt, dim);
       });
   if (_comm.sum_nodes) // every copy of a node sees the increments of every rank's CPs
     _comm.sum_nodes(dv);
@@ -128,27 +164,30 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
 {
   const ContactFaceData F = _faces;
   const CommonPlaneData cp = _cp;
+  const TieWeights tw = _tie;
   auto X = _cg_x, R = _cg_r, Pv = _cg_p, Z = _cg_z, AP = _cg_ap, B = _cg_b;
   auto dv = _dv;
   auto mass = nodes.mass;
   auto bc = nodes.bc;
   auto mode = _tie_mode;
-  const int dim = _dim;
+  const int dim = _dim, Q = _tie_points;
+  const Index rows = cp.count * Q;
   Real rz = 0;
   Kokkos::parallel_reduce(
-      "scpdyn::contact::tieSetup", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-      KOKKOS_LAMBDA(const Index p, Real &sum) {
-        Real r[3] = {B(p, 0), B(p, 1), B(p, 2)}, z[3], D[3], Dn;
-        project(cp, p, mode(p), dim, r);
-        tieDiagonal(F, cp, p, mass, bc, dt, dim, D, Dn);
-        precondition(cp, p, mode(p), D, Dn, r, z);
+      "scpdyn::contact::tieSetup", Kokkos::RangePolicy<ExecSpace>(0, rows),
+      KOKKOS_LAMBDA(const Index c, Real &sum) {
+        const Index p = c / Q;
+        Real r[3] = {B(c, 0), B(c, 1), B(c, 2)}, z[3], D[3], Dn;
+        project(cp, p, mode(c), dim, r);
+        tieDiagonal(F, cp, tw, c, p, mass, bc, dt, dim, D, Dn);
+        precondition(cp, p, mode(c), D, Dn, r, z);
         const bool counted = ownsPlane(F, cp, p); // a cross-rank CP counts once
         for (int d = 0; d < 3; ++d)
         {
-          X(p, d) = 0;
-          R(p, d) = r[d];
-          Z(p, d) = z[d];
-          Pv(p, d) = z[d];
+          X(c, d) = 0;
+          R(c, d) = r[d];
+          Z(c, d) = z[d];
+          Pv(c, d) = z[d];
           if (counted)
             sum += r[d] * z[d];
         }
@@ -162,20 +201,21 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
     tieScatter(nodes, dt, Pv);
     Real pap = 0;
     Kokkos::parallel_reduce(
-        "scpdyn::contact::tieApply", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-        KOKKOS_LAMBDA(const Index p, Real &sum) {
+        "scpdyn::contact::tieApply", Kokkos::RangePolicy<ExecSpace>(0, rows),
+        KOKKOS_LAMBDA(const Index c, Real &sum) {
+          const Index p = c / Q;
           Real V1[3], V2[3], ap[3];
-          weightedVelocity(F, cp, p, 0, dv, V1);
-          weightedVelocity(F, cp, p, 1, dv, V2);
+          rowVelocity(F, cp, tw, c, p, 0, dv, V1);
+          rowVelocity(F, cp, tw, c, p, 1, dv, V2);
           for (int d = 0; d < 3; ++d)
             ap[d] = V2[d] - V1[d]; // (A p)_c: the relative velocity the forces p remove
-          project(cp, p, mode(p), dim, ap);
+          project(cp, p, mode(c), dim, ap);
           const bool counted = ownsPlane(F, cp, p);
           for (int d = 0; d < 3; ++d)
           {
-            AP(p, d) = ap[d];
+            AP(c, d) = ap[d];
             if (counted)
-              sum += Pv(p, d) * ap[d];
+              sum += Pv(c, d) * ap[d];
           }
         },
         pap);
@@ -185,21 +225,22 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
     const Real alpha = rz / pap;
     Real rz_new = 0;
     Kokkos::parallel_reduce(
-        "scpdyn::contact::tieUpdate", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-        KOKKOS_LAMBDA(const Index p, Real &sum) {
+        "scpdyn::contact::tieUpdate", Kokkos::RangePolicy<ExecSpace>(0, rows),
+        KOKKOS_LAMBDA(const Index c, Real &sum) {
+          const Index p = c / Q;
           Real r[3], z[3], D[3], Dn;
           for (int d = 0; d < 3; ++d)
           {
-            X(p, d) += alpha * Pv(p, d);
-            r[d] = R(p, d) - alpha * AP(p, d);
-            R(p, d) = r[d];
+            X(c, d) += alpha * Pv(c, d);
+            r[d] = R(c, d) - alpha * AP(c, d);
+            R(c, d) = r[d];
           }
-          tieDiagonal(F, cp, p, mass, bc, dt, dim, D, Dn);
-          precondition(cp, p, mode(p), D, Dn, r, z);
+          tieDiagonal(F, cp, tw, c, p, mass, bc, dt, dim, D, Dn);
+          precondition(cp, p, mode(c), D, Dn, r, z);
           const bool counted = ownsPlane(F, cp, p);
           for (int d = 0; d < 3; ++d)
           {
-            Z(p, d) = z[d];
+            Z(c, d) = z[d];
             if (counted)
               sum += r[d] * z[d];
           }
@@ -209,38 +250,44 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
     const Real beta = rz_new / rz;
     rz = rz_new;
     Kokkos::parallel_for(
-        "scpdyn::contact::tieDirection", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-        KOKKOS_LAMBDA(const Index p) {
+        "scpdyn::contact::tieDirection", Kokkos::RangePolicy<ExecSpace>(0, rows),
+        KOKKOS_LAMBDA(const Index c) {
           for (int d = 0; d < 3; ++d)
-            Pv(p, d) = Z(p, d) + beta * Pv(p, d);
+            Pv(c, d) = Z(c, d) + beta * Pv(c, d);
         });
   }
   return it;
+}
+
+void ContactSystem::allocateTieRows()
+{
+  const size_t n = size_t(_cp.count) * size_t(_tie_points);
+  if (_cg_x.extent(0) == n)
+    return;
+  _cg_x = VectorView("cg_x", n);
+  _cg_r = VectorView("cg_r", n);
+  _cg_p = VectorView("cg_p", n);
+  _cg_z = VectorView("cg_z", n);
+  _cg_ap = VectorView("cg_ap", n);
+  _cg_b = VectorView("cg_b", n);
+  _tie_mode = IndexView("tie_mode", n);
+  _tie.w1 = DeviceView<Real *[kMaxFaceNodes]>("tie_w1", n);
+  _tie.w2 = DeviceView<Real *[kMaxFaceNodes]>("tie_w2", n);
 }
 
 void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
 {
   const ContactFaceData F = _faces;
   const CommonPlaneData cp = _cp;
-  const size_t n = size_t(cp.count);
-  if (_cg_x.extent(0) != n)
-  {
-    _cg_x = VectorView("cg_x", n);
-    _cg_r = VectorView("cg_r", n);
-    _cg_p = VectorView("cg_p", n);
-    _cg_z = VectorView("cg_z", n);
-    _cg_ap = VectorView("cg_ap", n);
-    _cg_b = VectorView("cg_b", n);
-    _tie_mode = IndexView("tie_mode", n);
-  }
+  const TieWeights tw = _tie;
   auto vstar = _vstar, fc = _fc, dv = _dv;
   auto mass = nodes.mass;
   auto bc = nodes.bc;
   auto used = _faces.nodes_used;
   auto X = _cg_x, B = _cg_b;
   auto mode = _tie_mode;
-  const int dim = _dim;
-  const Index nused = Index(used.extent(0));
+  const int dim = _dim, Q = _tie_points;
+  const Index nused = Index(used.extent(0)), rows = cp.count * Q;
   // the joint CPs' forces are part of what the constraints see; decomposed: their totals over
   // the ranks (fc holds this rank's faces only), summed in a copy so step 10b still sums parts
   VectorView joint = fc;
@@ -258,26 +305,32 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
           if (bc(k, d) < 0)
             vstar(k, d) += dt * joint(k, d) / mass(k);
       });
-  // targets b: the relative velocity to remove (sticky), or the normal approach beyond the gap
-  // (slide line); slide lines start active where they approach
+  // targets b: the relative velocity to remove at each tie point (sticky), or the normal
+  // approach beyond the gap at the POC (slide line); slide lines start active where they
+  // approach
   Kokkos::parallel_for(
-      "scpdyn::contact::tieTargets", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-      KOKKOS_LAMBDA(const Index p) {
+      "scpdyn::contact::tieTargets", Kokkos::RangePolicy<ExecSpace>(0, rows),
+      KOKKOS_LAMBDA(const Index c) {
+        const Index p = c / Q;
         const ContactOption o = cp.params(p).option;
         Real V1[3], V2[3], Vn = 0;
-        weightedVelocity(F, cp, p, 0, vstar, V1);
-        weightedVelocity(F, cp, p, 1, vstar, V2);
+        rowVelocity(F, cp, tw, c, p, 0, vstar, V1);
+        rowVelocity(F, cp, tw, c, p, 1, vstar, V2);
         for (int d = 0; d < 3; ++d)
           Vn += (V1[d] - V2[d]) * cp.normal(p, d);
         const Real gap = cp.state(p).u < 0 ? -cp.state(p).u : 0.0;
         const Real excess = Vn - gap / dt;
         const bool active = cp.status(p) != CpInactive;
-        mode(p) = !active                                       ? TieNone
-                  : o == ContactOption::Sticky                  ? TieFull
-                  : o == ContactOption::SlideLine && excess > 0 ? TieNormal
-                                                                : TieNone;
+        const bool poc_row = c % Q == 0;
+        const bool sticky_row = o == ContactOption::Sticky;
+        mode(c) = !active                                                  ? TieNone
+                  : sticky_row                                             ? TieFull
+                  : o == ContactOption::SlideLine && poc_row && excess > 0 ? TieNormal
+                                                                           : TieNone;
         for (int d = 0; d < 3; ++d)
-          B(p, d) = o == ContactOption::Sticky ? V1[d] - V2[d] : excess * cp.normal(p, d);
+          B(c, d) = sticky_row                                 ? V1[d] - V2[d]
+                    : o == ContactOption::SlideLine && poc_row ? excess * cp.normal(p, d)
+                                                               : 0.0;
       });
   // Active set for "no tension" (D14): solve, free the slide lines that pull, add those that
   // still approach beyond their gap, repeat until nothing changes.
@@ -293,25 +346,26 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         KOKKOS_LAMBDA(const Index p, Index &count) {
           if (cp.params(p).option != ContactOption::SlideLine || cp.status(p) == CpInactive)
             return;
+          const Index c = p * Q; // the POC row
           Real V1[3], V2[3], Fn = 0, dVn = 0, bn = 0;
-          weightedVelocity(F, cp, p, 0, dv, V1);
-          weightedVelocity(F, cp, p, 1, dv, V2);
+          rowVelocity(F, cp, tw, c, p, 0, dv, V1);
+          rowVelocity(F, cp, tw, c, p, 1, dv, V2);
           for (int d = 0; d < 3; ++d)
           {
-            Fn += X(p, d) * cp.normal(p, d);
+            Fn += X(c, d) * cp.normal(p, d);
             dVn += (V1[d] - V2[d]) * cp.normal(p, d);
-            bn += B(p, d) * cp.normal(p, d);
+            bn += B(c, d) * cp.normal(p, d);
           }
           // tolerance: round-off of the removed approach velocity
           const Real tol = 1e-9 * (contact_math::abs(bn) + contact_math::abs(dVn)) + 1e-300;
-          if (mode(p) == TieNormal && Fn < 0)
+          if (mode(c) == TieNormal && Fn < 0)
           {
-            mode(p) = TieNone;
+            mode(c) = TieNone;
             ++count;
           }
-          else if (mode(p) == TieNone && bn + dVn > tol)
+          else if (mode(c) == TieNone && bn + dVn > tol)
           {
-            mode(p) = TieNormal;
+            mode(c) = TieNormal;
             ++count;
           }
         },
@@ -321,7 +375,6 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   }
   // apply the forces: contact force, v*, CP totals
   tieScatter(nodes, dt, X);
-  const VectorView no_dv;
   Kokkos::parallel_for(
       "scpdyn::contact::tieApplyNodes", Kokkos::RangePolicy<ExecSpace>(0, nused),
       KOKKOS_LAMBDA(const Index i) {
@@ -335,14 +388,23 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         const JointParams &P = cp.params(p);
         if (!isConstraint(P.option) || cp.status(p) == CpInactive)
           return;
-        Real f[3], Fn = 0;
+        Real f[3] = {0, 0, 0}, Fn = 0;
+        bool tied = false;
+        for (Index c = p * Q; c < (p + 1) * Q; ++c)
+        {
+          if (mode(c) == TieNone)
+            continue;
+          tied = true;
+          const Real fr[3] = {X(c, 0), X(c, 1), X(c, 2)};
+          rowScatter(F, cp, tw, c, p, fr, fc, false, mass, bc, dt, dim);
+          for (int d = 0; d < 3; ++d)
+            f[d] += fr[d];
+        }
         for (int d = 0; d < 3; ++d)
         {
-          f[d] = mode(p) == TieNone ? 0.0 : X(p, d);
           cp.force(p, d) = f[d];
           Fn += f[d] * cp.normal(p, d);
         }
-        scatterForce(F, cp, p, f, fc, no_dv, mass, bc, dt, dim);
         CpState s = cp.state(p);
         Real V1[3], V2[3], Vn = 0;
         weightedVelocity(F, cp, p, 0, vstar, V1);
@@ -359,7 +421,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         }
         s.Ac_old = cp.area(p);
         cp.state(p) = s;
-        if (mode(p) == TieNone)
+        if (!tied)
           cp.status(p) = CpOpen;
       });
 }

@@ -113,6 +113,13 @@ struct CommonPlaneData
   IndexView status;                         ///< CpStatus
 };
 
+/// \brief Shape-function weights of the face nodes at the tie points of the velocity
+/// constraints: row c = p Q + q is tie point q of CP p (ContactConstraints.cpp).
+struct TieWeights
+{
+  DeviceView<Real *[kMaxFaceNodes]> w1, w2; ///< face 1, face 2
+};
+
 /// \brief Per-CP status written to the outputs.
 enum CpStatus : int
 {

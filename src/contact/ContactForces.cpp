@@ -49,9 +49,10 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
   auto mass = nodes.mass;
   auto bc = nodes.bc;
   const VectorView no_dv;
-  const int dim = _dim;
+  const int dim = _dim, Q = _tie_points;
   const bool axisym = _axisym;
   const Real half_dt = 0.5 * dt;
+  const TieWeights tie = _tie;
   Kokkos::parallel_for(
       "scpdyn::contact::planeForces", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p) {
@@ -110,7 +111,19 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
           cp.w2(p, a) = a < F.num_nodes(f2) ? w[a] : 0;
         cp.status(p) = CpStick;
         if (isConstraint(P.option))
-          return; // forces come from the correction passes
+        { // forces come from the correction passes, at the tie points (2D sticky) or the POC
+          Real tw1[2][kMaxFaceNodes] = {}, tw2[2][kMaxFaceNodes] = {};
+          const bool two_points = P.option == ContactOption::Sticky && dim == 2;
+          if (two_points)
+            tieWeights2D(x1, x2, g, tw1, tw2);
+          for (int q = 0; q < Q; ++q)
+            for (int a = 0; a < kMaxFaceNodes; ++a)
+            {
+              tie.w1(p * Q + q, a) = two_points ? tw1[q][a] : q == 0 ? cp.w1(p, a) : 0.0;
+              tie.w2(p * Q + q, a) = two_points ? tw2[q][a] : q == 0 ? cp.w2(p, a) : 0.0;
+            }
+          return;
+        }
         cpVelocities(F, cp, p, P.velocity, vel, V1, V2);
         for (int d = 0; d < 3; ++d)
         {
@@ -186,6 +199,8 @@ ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const Bound
   Kokkos::deep_copy(_state_before, _cp.state);
   if (_cp.count > 0 || decomposed)
   {
+    if (_has_constraints)
+      allocateTieRows();
     jointForces(nodes, dt);
     if (_has_constraints)
       constraintPasses(nodes, dt);

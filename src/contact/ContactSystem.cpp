@@ -69,6 +69,7 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   _search_interval = deck.contact.search_interval;
   _passes = deck.contact.constraint_passes;
   _search_gap = deck.contact.search_gap;
+  _tie_points = _dim == 2 ? 2 : 1;
   for (const auto &p : in.mesh->parts)
     _part_names.push_back(p.name);
   _faces = buildContactFaces(in, _info);

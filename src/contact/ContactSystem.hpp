@@ -134,6 +134,7 @@ private:
   void constraintPasses(const NodeFields &nodes, Real dt);
   int tieSolve(const NodeFields &nodes, Real dt);
   void tieScatter(const NodeFields &nodes, Real dt, const VectorView &force);
+  void allocateTieRows();
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
   void resizeNodeArrays(size_t n);
   Real globalSum(Real local) const;
@@ -157,7 +158,9 @@ private:
   bool _has_constraints = false, _has_explicit = false;
   bool _has_sticky = false, _has_slide = false;
   VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
-  IndexView _tie_mode; ///< per CP: which velocity constraint it imposes this cycle
+  IndexView _tie_mode; ///< per tie row: which velocity constraint it imposes this cycle
+  TieWeights _tie;     ///< per tie row: the face weights at its point (step 9, A-D)
+  int _tie_points = 1; ///< tie rows per CP: 2 in 2D (tieWeights2D), else 1
 
   VectorView _vstar;   ///< v* of 10.6 (contact nodes; other entries unused)
   VectorView _dv;      ///< velocity increments of one constraint pass

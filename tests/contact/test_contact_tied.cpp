@@ -106,9 +106,9 @@ TEST(ContactTied, T6dStaggeredWallMatchesOneMesh)
       const double e2 = historyE2(a["time"], a[kv.first], r["time"], kv.second, 0, 60e-6);
       EXPECT_LT(e2, 0.02) << kv.first;
       // growth: the RMS difference in the last 20 us, relative to the RMS of the reference over
-      // the run, stays inside the same 2 % (measured <= 1.7 %). It does grow against the first
-      // 40 us (ratio 2-4 per gauge): the face-average ties leave the relative zigzag mode of two
-      // coincident faces free and it rings after the pulse (docs/theory.md).
+      // the run, stays inside the same 2 %. With one tie per CP it grew against the first 40 us
+      // (ratio 2-4, up to 1.7 %): the relative zigzag mode of two coincident faces was free and
+      // rang after the pulse; two tie points (docs/theory.md 11.2) hold it (measured <= 3e-7).
       const double ref = std::sqrt(meanSquareDifference(
           r["time"], std::vector<double>(kv.second.size(), 0.0), r["time"], kv.second, 0, 60e-6));
       const double late =
@@ -218,7 +218,13 @@ DisplacementE2 compareDisplacements(Solver &mono, Solver &tied, double r_near)
 
 // An imbricate mesh tied by sticky joints reproduces its one-mesh twin: displacement E2 <= 1 %
 // over the whole block and over the first brick width from the axis (r < 12.5 mm), in plane
-// strain and in axisymmetry, where one tie per CP left a zig-zag of the two copies of a node.
+// strain and in axisymmetry. Tighter, to see the tie formulation: with two tie points per CP
+// (docs/theory.md 11.2) coincident faces move as the merged nodes, so in plane strain only the
+// solver's tolerance is left (measured E2 4.5e-8; bound 1e-5); in axisymmetry the pressure of
+// step 10, added after the ties, loads the two copies of a surface node unequally (measured E2
+// 1.6e-3, 1.4e-3 near the axis; bound 3e-3). One tie per CP at the POC left a zig-zag of the two
+// copies free: E2 8.5e-4 in plane strain, 7.8e-3 near the axis (3.1e-2 with viscous hourglass
+// control).
 TEST(ContactTied, ImbricateMeshMatchesOneMesh)
 {
   for (const std::string geometry : {"plane_strain", "axisymmetric"})
@@ -230,8 +236,9 @@ TEST(ContactTied, ImbricateMeshMatchesOneMesh)
     std::printf("[ measured ] imbricate %s: displacement E2 %.3e, near the axis %.3e, copies "
                 "apart %.3e of max |u|, dt %.2e\n",
                 geometry.c_str(), e.all, e.near_axis, e.worst_copy, e.dt_diff);
-    EXPECT_LT(e.all, 0.01);
-    EXPECT_LT(e.near_axis, 0.01);
+    const bool plane = geometry == "plane_strain";
+    EXPECT_LT(e.all, plane ? 1e-5 : 3e-3);
+    EXPECT_LT(e.near_axis, plane ? 1e-5 : 3e-3);
     RecordProperty(geometry + "_E2", sci(e.all));
     RecordProperty(geometry + "_E2_near_axis", sci(e.near_axis));
     RecordProperty(geometry + "_copies_apart", sci(e.worst_copy));
