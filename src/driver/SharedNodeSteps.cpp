@@ -43,8 +43,7 @@ void Solver::stepExchangeLoadPartials()
     NodeFields into = _m.nodes;
     into.f_ext = _m.dd->f_load;
     applyFaceLoads(_m.bc, into, _dt, _m.deck.dimension, _m.deck.geometry);
-    sumSharedLoads(*_m.dd->halo, _m.dd->shared_nodes, _m.dd->f_load, _m.nodes,
-                   _m.deck.gravity.data());
+    sumSharedLoads(*_m.dd->halo, _m.dd->shared_nodes, _m.dd->f_load, _m.nodes, _gravity.data());
   }
 }
 

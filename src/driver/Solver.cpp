@@ -1,6 +1,7 @@
 // The 13-step cycle of the paper (docs/theory.md 2.2), read top to bottom in Solver::cycle().
 #include "driver/Solver.hpp"
 
+#include "bc/TimeFunctions.hpp"
 #include "contact/ContactSystem.hpp"
 #include "parallel/Decomposition.hpp"
 #include "driver/Outputs.hpp"
@@ -13,7 +14,26 @@
 namespace scpdyn
 {
 
-Solver::Solver(const Deck &deck, MPI_Comm comm) : _m(deck, comm) { startCycles(); }
+Solver::Solver(const Deck &deck, MPI_Comm comm) : _m(deck, comm)
+{
+  for (size_t f = 0; f < _m.deck.functions.size(); ++f)
+    if (_m.deck.functions[f].name == _m.deck.gravity_function)
+      _gravity_function = int(f);
+  _gravity = gravityAt(0);
+  startCycles();
+}
+
+std::array<Real, 3> Solver::gravityAt(Real t) const
+{
+  std::array<Real, 3> g = _m.deck.gravity;
+  if (_gravity_function >= 0)
+  {
+    const Real scale = evaluate(_m.deck.functions[size_t(_gravity_function)], t);
+    for (Real &c : g)
+      c *= scale;
+  }
+  return g;
+}
 
 Solver::~Solver() = default;
 
@@ -44,6 +64,7 @@ void Solver::cycle()
   // No shortened last step: a sudden change of dt changes the leapfrog's conserved energy
   // (an artefact in the balance); the run ends on the first cycle at or past the end time.
   _dt = _dt_next;
+  _gravity = gravityAt(_time);
   stepSortIntoBins();             // 3: cycle begins; contact faces into bins when due
   stepExchangeFaceConnectivity(); // 4: bounding boxes, occupied bins, ghost-face lists
   stepZeroForces();               // 5: zero forces; external-face variables
@@ -88,7 +109,7 @@ void Solver::stepZeroForces()
 {
   ScopedStep t(_timers, "05_zero_forces");
   if (!_forces_zeroed) // else the last cycle's step 12 did it in its sweep over the nodes
-    zeroForces(_m.nodes, _m.deck.gravity.data(), _m.external_loads);
+    zeroForces(_m.nodes, _gravity.data(), _m.external_loads);
   _forces_zeroed = false;
 }
 
@@ -98,9 +119,9 @@ void Solver::stepElementSolvers()
   const ElementControls controls = elementControls();
   if (_m.sweep.active) // step 12 of the early nodes, in this step's sweep
   {
-    _m.sweep.node =
-        nodeIntegrator(_m.nodes, _m.bc.velocity_current, _dt,
-                       _m.dd ? _m.dd->owned_device : IndexView(), _m.deck.gravity.data());
+    const std::array<Real, 3> next_gravity = gravityAt(_time + _dt);
+    _m.sweep.node = nodeIntegrator(_m.nodes, _m.bc.velocity_current, _dt,
+                                   _m.dd ? _m.dd->owned_device : IndexView(), next_gravity.data());
     _m.sweep.loads = _m.external_loads;
   }
   const ElementStepResult r = computeElementForces(_m.groups, controls, _m.nodes, _m.elems,
@@ -144,9 +165,10 @@ void Solver::stepUpdateNodes()
   if (_check_sweep)
     checkEarlyNodes();
   updateVelocityValues(_m.bc, _time + _dt);
+  const std::array<Real, 3> next_gravity = gravityAt(_time + _dt);
   _last_sums = updateNodes(_m.nodes, _m.bc, _dt, _m.deck.dimension,
                            _m.dd ? _m.dd->owned_device : IndexView(), _m.external_loads,
-                           _m.deck.gravity.data(), _m.sweep.active ? &_m.sweep.late_runs : nullptr);
+                           next_gravity.data(), _m.sweep.active ? &_m.sweep.late_runs : nullptr);
   if (_m.sweep.active) // the early nodes' sums, from step 6
     _last_sums += sweepSums(_m.sweep);
   _forces_zeroed = true;
@@ -170,8 +192,9 @@ void Solver::stepUpdateNodes()
 void Solver::checkEarlyNodes() const
 {
   std::string what;
+  const std::array<Real, 3> next_gravity = gravityAt(_time + _dt);
   const Index n = earlyNodeWrittenLate(_m.sweep, _m.nodes, _early_snapshot, _m.external_loads,
-                                       _m.deck.gravity.data(), &what);
+                                       next_gravity.data(), &what);
   std::string error;
   if (n >= 0)
     error = "node " + std::to_string(globalNode(n)) + " was integrated in step 6 and then " +

@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 /// \file Solver.hpp
 /// \brief The explicit Lagrangian solver: runs the 13-step cycle of the paper (docs/theory.md
 /// 2.2) in Solver::cycle() on the Model that set-up built (model/Model.hpp), and holds what
@@ -57,6 +58,8 @@ public:
 
   Real time() const { return _time; }
   Real dt() const { return _dt; }
+  /// \brief The deck's gravity at time t: its vector times its function, if any [m/s^2].
+  std::array<Real, 3> gravityAt(Real t) const;
   /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
   ElementControls elementControls() const
   {
@@ -147,6 +150,8 @@ private:
   Real _time = 0;
   Real _dt = 0;
   Real _dt_next = 0;
+  int _gravity_function = -1;   ///< index into the deck's functions, or -1: constant gravity
+  std::array<Real, 3> _gravity; ///< the gravity of this cycle, g(t^n) [m/s^2]
   long _cycle = 0;
   Real _external_work = 0;
   Real _kinetic_mid = 0; ///< 1/2 sum m v^n.v^{n+1} of the last step

@@ -91,13 +91,23 @@ struct PartSpec
   bool merge_nodes = false; ///< merge nodes coincident with other merge_nodes parts
 };
 
-/// \brief A named set selected geometrically or by part.
+/// \brief A named set selected by part, by box, or by both (the part's nodes/faces in the box).
 struct SetSpec
 {
   std::string name;
-  std::string part; ///< all nodes/external faces of this part (or prefix*)
+  std::string part; ///< all nodes/external faces of this part (or prefix*); empty: every part
   bool has_box = false;
   std::array<Real, 3> box_min{{0, 0, 0}}, box_max{{0, 0, 0}}; ///< inclusive, with tolerance
+};
+
+/// \brief An initial velocity of a node set, uniform or linear in position:
+/// v = velocity + gradient (x - about); applied after the parts' initial velocities, in order.
+struct InitialVelocitySpec
+{
+  std::string node_set;
+  std::array<Real, 3> velocity{{0, 0, 0}};       ///< [m/s]
+  std::array<std::array<Real, 3>, 3> gradient{}; ///< dv_i/dx_j [1/s]
+  std::array<Real, 3> about{{0, 0, 0}};          ///< [m]
 };
 
 struct BoundaryConditionSpec
@@ -212,6 +222,7 @@ struct Deck
   ScatterMode scatter = ScatterMode::Gather;
   NodeUpdateMode node_update = NodeUpdateMode::Fused;
   std::array<Real, 3> gravity{{0, 0, 0}};
+  std::string gravity_function; ///< scales gravity in time; empty: constant
 
   // output
   std::string output_dir;       ///< default out/<deck stem>
@@ -225,6 +236,7 @@ struct Deck
   std::vector<SetSpec> face_sets;
   std::vector<TimeFunction> functions;
   std::vector<BoundaryConditionSpec> boundary_conditions;
+  std::vector<InitialVelocitySpec> initial_velocities; ///< the deck's initial_conditions
   std::vector<GaugeSpec> gauges;
   ContactSpec contact;
 };

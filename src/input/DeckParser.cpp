@@ -268,10 +268,11 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
     if (dir.empty())
       dir = ".";
 
-    const YamlMap root = YamlValue(docs[0], "", docs[0].Mark().line + 1)
-                             .map({"title", "dimension", "geometry", "time", "numerics", "gravity",
-                                   "output", "materials", "parts", "node_sets", "face_sets",
-                                   "functions", "boundary_conditions", "gauges", "contact"});
+    const YamlMap root =
+        YamlValue(docs[0], "", docs[0].Mark().line + 1)
+            .map({"title", "dimension", "geometry", "time", "numerics", "gravity", "output",
+                  "materials", "parts", "node_sets", "face_sets", "functions",
+                  "boundary_conditions", "initial_conditions", "gauges", "contact"});
     deck.title = root.string("title", stem);
     if (!root.has("dimension"))
       root.missing("dimension");
@@ -290,12 +291,11 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
     }
     parseTime(root, deck);
     parseNumerics(root, deck);
-    if (root.has("gravity"))
-      deck.gravity = root["gravity"].realVector(deck.dimension);
     parseOutput(root, deck, stem);
 
     DeckNames names;
     names.functions = parseFunctions(root, deck);
+    parseGravity(root, deck, names);
     names.materials = parseMaterials(root, deck);
     parseParts(root, deck, names, dir);
     parseSetsAndConditions(root, deck, names);

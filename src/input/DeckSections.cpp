@@ -88,12 +88,15 @@ void parseSets(const YamlMap &root, const std::string &key, int dim, const DeckN
     SetSpec set;
     set.name = m["name"].string();
     claimName(seen, m["name"], set.name);
-    if (m.exactlyOne({"part", "box"}) == "part")
+    if (!m.has("part") && !m.has("box"))
+      item.fail("give part, box or both (both: the part's " +
+                std::string(key == "node_sets" ? "nodes" : "faces") + " in the box)");
+    if (m.has("part"))
     {
       set.part = m["part"].string();
       checkPartReference(m["part"], set.part, names);
     }
-    else
+    if (m.has("box"))
     {
       const YamlMap box = m["box"].map({"min", "max"});
       set.has_box = true;
@@ -181,15 +184,72 @@ void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::pat
   }
 }
 
+void parseGravity(const YamlMap &root, Deck &deck, const DeckNames &names)
+{
+  if (!root.has("gravity"))
+    return;
+  const YamlValue g = root["gravity"];
+  if (g.node().IsSequence())
+  {
+    deck.gravity = g.realVector(deck.dimension);
+    return;
+  }
+  const YamlMap m = g.map({"value", "function"});
+  if (!m.has("value"))
+    m.missing("value");
+  deck.gravity = m["value"].realVector(deck.dimension);
+  if (m.has("function"))
+  {
+    deck.gravity_function = m["function"].string();
+    checkReference(m["function"], deck.gravity_function, "function", names.functions);
+  }
+}
+
+void parseInitialConditions(const YamlMap &root, Deck &deck, const DeckNames &names,
+                            bool check_sets)
+{
+  if (!root.has("initial_conditions"))
+    return;
+  const int dim = deck.dimension;
+  for (const YamlValue &item : root["initial_conditions"].list())
+  {
+    const YamlMap m = item.map({"node_set", "velocity", "velocity_gradient", "about"});
+    InitialVelocitySpec iv;
+    if (!m.has("node_set"))
+      m.missing("node_set");
+    iv.node_set = m["node_set"].string();
+    if (check_sets)
+      checkReference(m["node_set"], iv.node_set, "node set", names.node_sets);
+    if (!m.has("velocity") && !m.has("velocity_gradient"))
+      item.fail("give velocity, velocity_gradient or both");
+    if (m.has("velocity"))
+      iv.velocity = m["velocity"].realVector(dim);
+    if (m.has("velocity_gradient"))
+    {
+      const std::vector<YamlValue> rows = m["velocity_gradient"].list();
+      if (int(rows.size()) != dim)
+        m["velocity_gradient"].fail("needs " + std::to_string(dim) + " rows of " +
+                                    std::to_string(dim) + " (dv_i/dx_j), got " +
+                                    std::to_string(rows.size()) + " rows");
+      for (int i = 0; i < dim; ++i)
+        iv.gradient[size_t(i)] = rows[size_t(i)].realVector(dim);
+    }
+    if (m.has("about"))
+      iv.about = m["about"].realVector(dim);
+    deck.initial_velocities.push_back(iv);
+  }
+}
+
 void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names)
 {
   parseSets(root, "node_sets", deck.dimension, names, names.node_sets, deck.node_sets);
   parseSets(root, "face_sets", deck.dimension, names, names.face_sets, deck.face_sets);
-  if (!root.has("boundary_conditions"))
-    return;
   const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(), [](const PartSpec &p) {
     return p.mesh.type == MeshType::Gmsh;
   });
+  parseInitialConditions(root, deck, names, check_sets);
+  if (!root.has("boundary_conditions"))
+    return;
   for (const YamlValue &item : root["boundary_conditions"].list())
   {
     BoundaryConditionSpec bc;

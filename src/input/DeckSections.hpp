@@ -75,7 +75,9 @@ E readChoice(const YamlMap &m, const std::string &key, std::initializer_list<E> 
 /// \brief parts[] (with meshes); gmsh files are resolved against `deck_dir`.
 void parseParts(const YamlMap &root, Deck &deck, DeckNames &names,
                 const std::filesystem::path &deck_dir);
-/// \brief node_sets[], face_sets[], boundary_conditions[].
+/// \brief gravity: a vector, or {value: vector, function: name}; after the functions.
+void parseGravity(const YamlMap &root, Deck &deck, const DeckNames &names);
+/// \brief node_sets[], face_sets[], initial_conditions[], boundary_conditions[].
 void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names);
 /// \brief gauges[].
 void parseGauges(const YamlMap &root, Deck &deck);

@@ -38,7 +38,9 @@ void beginList(YAML::Emitter &out, const char *key, bool empty)
 template <class T>
 void vector(YAML::Emitter &out, const char *key, const std::array<T, 3> &v, int n)
 {
-  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  if (key) // else an item of a list
+    out << YAML::Key << key << YAML::Value;
+  out << YAML::Flow << YAML::BeginSeq;
   for (int i = 0; i < n; ++i)
   {
     if constexpr (std::is_integral_v<T>)
@@ -82,17 +84,17 @@ void writeSets(YAML::Emitter &out, const char *key, const std::vector<SetSpec> &
   {
     out << YAML::BeginMap << YAML::Key << "name" << YAML::Value;
     text(out, s.name);
+    if (!s.part.empty())
+    {
+      out << YAML::Key << "part" << YAML::Value;
+      text(out, s.part);
+    }
     if (s.has_box)
     {
       out << YAML::Key << "box" << YAML::Value << YAML::BeginMap;
       vector(out, "min", s.box_min, dim);
       vector(out, "max", s.box_max, dim);
       out << YAML::EndMap;
-    }
-    else
-    {
-      out << YAML::Key << "part" << YAML::Value;
-      text(out, s.part);
     }
     out << YAML::EndMap;
   }
@@ -236,7 +238,15 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   out << YAML::EndMap << YAML::Key << "scatter" << YAML::Value << deckName(deck.scatter);
   out << YAML::Key << "node_update" << YAML::Value << deckName(deck.node_update) << YAML::EndMap;
 
-  vector(out, "gravity", deck.gravity, dim);
+  if (deck.gravity_function.empty())
+    vector(out, "gravity", deck.gravity, dim);
+  else
+  {
+    out << YAML::Key << "gravity" << YAML::Value << YAML::BeginMap;
+    vector(out, "value", deck.gravity, dim);
+    text(out << YAML::Key << "function" << YAML::Value, deck.gravity_function);
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;
   text(out << YAML::Key << "directory" << YAML::Value, deck.output_dir);
   real(out << YAML::Key << "field_interval" << YAML::Value, deck.field_interval);
@@ -278,6 +288,20 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   beginList(out, "boundary_conditions", deck.boundary_conditions.empty());
   for (const auto &bc : deck.boundary_conditions)
     writeCondition(out, bc, dim);
+  out << YAML::EndSeq;
+  beginList(out, "initial_conditions", deck.initial_velocities.empty());
+  for (const auto &iv : deck.initial_velocities)
+  {
+    out << YAML::BeginMap << YAML::Key << "node_set" << YAML::Value;
+    text(out, iv.node_set);
+    vector(out, "velocity", iv.velocity, dim);
+    out << YAML::Key << "velocity_gradient" << YAML::Value << YAML::BeginSeq;
+    for (int i = 0; i < dim; ++i)
+      vector(out, nullptr, iv.gradient[size_t(i)], dim);
+    out << YAML::EndSeq;
+    vector(out, "about", iv.about, dim);
+    out << YAML::EndMap;
+  }
   out << YAML::EndSeq;
   beginList(out, "gauges", deck.gauges.empty());
   for (const auto &g : deck.gauges)

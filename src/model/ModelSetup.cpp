@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 
 namespace scpdyn
@@ -347,11 +348,26 @@ void ModelSetup::setupSets()
   {
     const SetSpec &s = _m.deck.node_sets[i];
     const std::string key = "node_sets[" + std::to_string(i) + "]";
-    std::vector<Index> nodes = s.has_box
-                                   ? nodesInBox(_m.mesh, s.box_min, s.box_max, tol)
-                                   : nodesOfParts(_m.mesh, partsMatching(s.part, key + ".part"));
-    if (!s.has_box)
+    // part, box, or both: the part's nodes in the box
+    std::vector<Index> nodes;
+    if (!s.part.empty())
+    {
+      nodes = nodesOfParts(_m.mesh, partsMatching(s.part, key + ".part"));
       unifyNodeSet(nodes);
+    }
+    if (s.has_box)
+    {
+      std::vector<Index> in_box = nodesInBox(_m.mesh, s.box_min, s.box_max, tol);
+      if (!s.part.empty())
+      {
+        std::vector<Index> both;
+        std::sort(nodes.begin(), nodes.end());
+        std::set_intersection(nodes.begin(), nodes.end(), in_box.begin(), in_box.end(),
+                              std::back_inserter(both));
+        in_box.swap(both);
+      }
+      nodes.swap(in_box);
+    }
     checkSetNotEmpty(nodes.size(),
                      _m.deck.path + ": " + key + ": node set '" + s.name + "' selects no node");
     _m.node_sets[s.name] = nodes;
@@ -361,8 +377,10 @@ void ModelSetup::setupSets()
     const SetSpec &s = _m.deck.face_sets[i];
     const std::string key = "face_sets[" + std::to_string(i) + "]";
     std::vector<HostFace> faces =
-        s.has_box ? facesInBox(_m.external_faces, _m.mesh, s.box_min, s.box_max, tol)
-                  : facesOfParts(_m.external_faces, partsMatching(s.part, key + ".part"));
+        s.part.empty() ? _m.external_faces
+                       : facesOfParts(_m.external_faces, partsMatching(s.part, key + ".part"));
+    if (s.has_box)
+      faces = facesInBox(faces, _m.mesh, s.box_min, s.box_max, tol);
     checkSetNotEmpty(faces.size(),
                      _m.deck.path + ": " + key + ": face set '" + s.name + "' selects no face");
     _m.face_sets[s.name] = faces;
@@ -498,13 +516,32 @@ void ModelSetup::setupInitialState()
   auto h_bc = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.nodes.bc);
   updateVelocityValues(_m.bc, 0.0);
   auto h_vbc = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.bc.velocity_current);
+  const int dim = _m.deck.dimension;
   for (Index n = 0; n < num_nodes; ++n)
     for (int i = 0; i < 3; ++i)
-    {
-      h_v(n, i) = i < _m.deck.dimension ? momentum[size_t(n)][size_t(i)] / mass[size_t(n)] : 0;
+      h_v(n, i) = i < dim ? momentum[size_t(n)][size_t(i)] / mass[size_t(n)] : 0;
+  // the deck's initial_conditions, in order, over the parts' velocities: v = v0 + G (x - about)
+  for (size_t c = 0; c < _m.deck.initial_velocities.size(); ++c)
+  {
+    const InitialVelocitySpec &iv = _m.deck.initial_velocities[c];
+    const auto set = _m.node_sets.find(iv.node_set);
+    if (set == _m.node_sets.end())
+      throw InputError(_m.deck.path + ": initial_conditions[" + std::to_string(c) +
+                       "].node_set: no node set named '" + iv.node_set + "'");
+    for (Index n : set->second)
+      for (int i = 0; i < dim; ++i)
+      {
+        Real v = iv.velocity[size_t(i)];
+        for (int j = 0; j < dim; ++j)
+          v += iv.gradient[size_t(i)][size_t(j)] *
+               (_m.mesh.coords[size_t(n)][size_t(j)] - iv.about[size_t(j)]);
+        h_v(n, i) = v;
+      }
+  }
+  for (Index n = 0; n < num_nodes; ++n)
+    for (int i = 0; i < 3; ++i)
       if (h_bc(n, i) >= 0)
         h_v(n, i) = h_vbc(h_bc(n, i));
-    }
   Kokkos::deep_copy(_m.nodes.v, h_v);
 
   // initial specific internal energy (the detonation energy of an explosive)

@@ -28,7 +28,7 @@ numerics:
   bulk_viscosity: {linear: 0.1, quadratic: 1.2}
   scatter: gather
   node_update: separate
-gravity: [0, 0, -9.81]
+gravity: {value: [0, 0, -9.81], function: ramp}
 output: {directory: results/full, field_interval: 1.0e-4, history_interval: 1.0e-6,
          progress_interval: 5}
 functions:
@@ -63,8 +63,12 @@ parts:
 node_sets:
   - {name: base, box: {min: [-1, -1, -0.02], max: [2, 2, -0.02]}}
   - {name: wall_nodes, part: wall}
+  - {name: wall_low, part: wall, box: {min: [-1, -1, -1], max: [2, 2, 0.1]}}
 face_sets:
   - {name: top, part: "pl*"}
+initial_conditions:
+  - {node_set: wall_nodes, velocity: [1, 2, 3]}
+  - {node_set: wall_low, velocity_gradient: [[0, -5, 0], [5, 0, 0], [0, 0, 0]], about: [0.5, 0, 0]}
 boundary_conditions:
   - {type: velocity, node_set: base, component: z, value: 0}
   - {type: force, node_set: wall_nodes, value: [1, 0, -2], function: ramp}
@@ -183,6 +187,15 @@ void expectSameDeck(const Deck &a, const Deck &b)
     EXPECT_EQ(a.functions[i].t, b.functions[i].t);
     EXPECT_EQ(a.functions[i].value, b.functions[i].value);
   }
+  EXPECT_EQ(a.gravity_function, b.gravity_function);
+  ASSERT_EQ(a.initial_velocities.size(), b.initial_velocities.size());
+  for (std::size_t i = 0; i < a.initial_velocities.size(); ++i)
+  {
+    EXPECT_EQ(a.initial_velocities[i].node_set, b.initial_velocities[i].node_set);
+    EXPECT_EQ(a.initial_velocities[i].velocity, b.initial_velocities[i].velocity);
+    EXPECT_EQ(a.initial_velocities[i].gradient, b.initial_velocities[i].gradient);
+    EXPECT_EQ(a.initial_velocities[i].about, b.initial_velocities[i].about);
+  }
   ASSERT_EQ(a.boundary_conditions.size(), b.boundary_conditions.size());
   for (std::size_t i = 0; i < a.boundary_conditions.size(); ++i)
   {
@@ -264,10 +277,16 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(d.parts[2].mesh.file, fs::absolute(kWork + "/meshes/ball.msh").string());
   EXPECT_EQ(d.parts[2].initial_velocity, (std::array<Real, 3>{{0, 0, -250}}));
 
-  ASSERT_EQ(d.node_sets.size(), 2u);
+  ASSERT_EQ(d.node_sets.size(), 3u);
   EXPECT_TRUE(d.node_sets[0].has_box);
   EXPECT_EQ(d.node_sets[0].box_max, (std::array<Real, 3>{{2, 2, -0.02}}));
   EXPECT_EQ(d.node_sets[1].part, "wall");
+  EXPECT_EQ(d.node_sets[2].part, "wall");
+  EXPECT_TRUE(d.node_sets[2].has_box);
+  EXPECT_EQ(d.gravity_function, "ramp");
+  ASSERT_EQ(d.initial_velocities.size(), 2u);
+  EXPECT_EQ(d.initial_velocities[1].gradient[1][0], 5.0);
+  EXPECT_EQ(d.initial_velocities[1].about[0], 0.5);
   EXPECT_EQ(d.face_sets[0].part, "pl*");
 
   ASSERT_EQ(d.boundary_conditions.size(), 4u);
