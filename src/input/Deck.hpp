@@ -108,6 +108,7 @@ struct InitialVelocitySpec
   std::array<Real, 3> velocity{{0, 0, 0}};       ///< [m/s]
   std::array<std::array<Real, 3>, 3> gradient{}; ///< dv_i/dx_j [1/s]
   std::array<Real, 3> about{{0, 0, 0}};          ///< [m]
+  int set_line = 0; ///< the deck's line of the set name (messages after meshing)
 };
 
 struct BoundaryConditionSpec
@@ -118,6 +119,7 @@ struct BoundaryConditionSpec
   Real value = 0;                        ///< velocity (m/s) or pressure (Pa)
   std::array<Real, 3> vector{{0, 0, 0}}; ///< force (N) per node
   std::string function;                  ///< optional TimeFunction name multiplying the value
+  int set_line = 0; ///< the deck's line of the set name (messages after meshing)
 };
 
 struct GaugeSpec

@@ -5,6 +5,8 @@
 #include "input/YamlReader.hpp"
 #include "material/MaterialSpec.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -250,7 +252,13 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
   {
     const std::string line =
         e.mark.is_null() ? "" : " (line " + std::to_string(e.mark.line + 1) + ")";
-    throw InputError(path + ": <document>" + line + ": YAML syntax error: " + e.msg);
+    // yaml-cpp stops at 500 nested levels; what reaches here is then its "bad file"
+    const bool deep = dynamic_cast<const YAML::DeepRecursion *>(&e) != nullptr ||
+                      dynamic_cast<const YAML::BadFile *>(&e) != nullptr;
+    throw InputError(path + ": <document>" + line + ": " +
+                     (deep ? std::string("lists or maps nested deeper than the YAML reader's "
+                                         "limit of 500 levels")
+                           : "YAML syntax error: " + e.msg));
   }
   try
   {

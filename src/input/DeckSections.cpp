@@ -127,6 +127,7 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
                  std::string("boundary condition type '") + deckName(bc.type) + "'");
 
   bc.set = m[set_key].string();
+  bc.set_line = m[set_key].line();
   if (check_sets) // with gmsh meshes, sets may also come from the mesh file: the driver checks
     checkReference(m[set_key], bc.set, set_key == "face_set" ? "face set" : "node set",
                    set_key == "face_set" ? names.face_sets : names.node_sets);
@@ -153,6 +154,12 @@ void parseCondition(const YamlValue &item, int dim, const DeckNames &names, bool
 
 void checkPartReference(const YamlValue &v, const std::string &part, const DeckNames &names)
 {
+  // a sub-part the meshing makes ('wall.0.1' of a brick wall, 'm.impactor' of a gmsh file) is
+  // checked once the meshes exist; here its deck part must exist
+  const size_t dot = part.find('.');
+  if (part.back() != '*' && dot != std::string::npos && dot > 0 &&
+      names.parts.count(part.substr(0, dot)))
+    return;
   if (part.back() != '*')
   {
     checkReference(v, part, "part", names.parts);
@@ -218,6 +225,7 @@ void parseInitialConditions(const YamlMap &root, Deck &deck, const DeckNames &na
     if (!m.has("node_set"))
       m.missing("node_set");
     iv.node_set = m["node_set"].string();
+    iv.set_line = m["node_set"].line();
     if (check_sets)
       checkReference(m["node_set"], iv.node_set, "node set", names.node_sets);
     if (!m.has("velocity") && !m.has("velocity_gradient"))

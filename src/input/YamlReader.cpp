@@ -75,8 +75,10 @@ Real YamlValue::real() const
   const double x = std::strtod(s.c_str(), &end);
   if (s.empty() || end != s.c_str() + s.size())
     fail("expected a number, got " + describe(_node));
-  if (!std::isfinite(x) || errno == ERANGE)
-    fail("expected a finite number, got '" + s + "'");
+  if (!std::isfinite(x) || (errno == ERANGE && std::fabs(x) > 1))
+    fail("expected a finite number, got '" + s + "' (beyond +-1.8e308)");
+  if (errno == ERANGE && x == 0) // a subnormal (1e-320) is a number; only a total underflow is not
+    fail("'" + s + "' is too small for a double (below 4.9e-324): write 0 if zero is meant");
   return x;
 }
 
@@ -292,27 +294,6 @@ std::string suggestion(const std::string &word, const std::vector<std::string> &
   if (!closest.empty())
     return "; did you mean '" + closest + "'?";
   return " (expected one of: " + joined(candidates) + ")";
-}
-
-std::string formatReal(Real x)
-{
-  if (x == 0 || !std::isfinite(x))
-    return x == 0 ? (std::signbit(x) ? "-0" : "0") : std::to_string(x);
-  // fewest significant digits that read back exactly
-  char buf[48];
-  int digits = 1;
-  for (; digits < 17; ++digits)
-  {
-    std::snprintf(buf, sizeof(buf), "%.*e", digits - 1, x);
-    if (std::strtod(buf, nullptr) == x)
-      break;
-  }
-  std::snprintf(buf, sizeof(buf), "%.*e", digits - 1, x);
-  const int exponent = std::atoi(std::strchr(buf, 'e') + 1);
-  // plain decimals for everyday magnitudes (7850, 0.25), exponent form beyond (2e+11, 1e-06)
-  if (exponent >= -4 && exponent < 6)
-    std::snprintf(buf, sizeof(buf), "%.*f", std::max(digits - 1 - exponent, 0), x);
-  return buf;
 }
 
 } // namespace input_impl

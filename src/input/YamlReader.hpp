@@ -1,4 +1,5 @@
 #pragma once
+#include "core/RealText.hpp"
 /// \file YamlReader.hpp
 /// \brief Checked access to a yaml-cpp tree for the deck parser: every value knows its key path
 /// (`parts[1].mesh.elements`) and 1-based YAML line, and every wrong type, missing key or
@@ -102,8 +103,7 @@ int editDistance(const std::string &a, const std::string &b);
 std::string suggestion(const std::string &word, const std::vector<std::string> &candidates);
 /// \brief "a, b, c".
 std::string joined(const std::vector<std::string> &words);
-/// \brief Shortest decimal text that reads back to exactly `x`.
-std::string formatReal(Real x);
+using scpdyn::formatReal; // core/RealText.hpp
 
 } // namespace input_impl
 } // namespace scpdyn

@@ -1,4 +1,5 @@
 #include "integrate/LateNodes.hpp"
+#include "core/RealText.hpp"
 #include "integrate/NodeSweep.hpp"
 
 #include <cstdlib>
@@ -89,7 +90,7 @@ Index earlyNodeWrittenLate(const NodeSweep &sweep, const NodeFields &nodes,
         auto m = Kokkos::create_mirror_view_and_copy(HostSpace(), s);
         h[i] = m();
       }
-      return std::to_string(h[0]) + ", " + std::to_string(h[1]) + ", " + std::to_string(h[2]);
+      return formatReal(h[0]) + ", " + formatReal(h[1]) + ", " + formatReal(h[2]);
     };
     *what = "x (" + pick(x) + "), v (" + pick(v) + "), f_int (" + pick(f_int) + "), f_ext (" +
             pick(f_ext) + ")" + (contact ? ", f_contact (" + pick(f_contact) + ")" : "");

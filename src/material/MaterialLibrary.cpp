@@ -1,4 +1,5 @@
 #include "material/MaterialLibrary.hpp"
+#include "core/RealText.hpp"
 
 #include "material/Geomaterial.hpp"
 #include "material/JohnsonCook.hpp"
@@ -329,7 +330,7 @@ void validateKeys(const MaterialSpec &spec)
       fail(spec, kv.first, "value is not a finite number");
   }
   if (get(spec, "density", 0) <= 0)
-    fail(spec, "density", "must be > 0 (got " + std::to_string(get(spec, "density", 0)) + ")");
+    fail(spec, "density", "must be > 0 (got " + formatReal(get(spec, "density", 0)) + ")");
   if (spec.model != "high_explosive")
     validateElasticKeys(spec);
   if (spec.model == "elastic_plastic")

@@ -152,6 +152,7 @@ void readSection(Lines &in, const std::string &name, FileData &fd)
   {
     in.need(name);
     const Tag nblocks = in.toInt(in.tokens(4, "numEntityBlocks numNodes minTag maxTag")[0]);
+    std::unordered_map<Tag, int> node_line; // line of each node's coordinates
     for (Tag b = 0; b < nblocks; ++b)
     {
       in.need(name);
@@ -167,6 +168,9 @@ void readSection(Lines &in, const std::string &name, FileData &fd)
       {
         in.need(name);
         auto x = in.tokens(3, "x y z");
+        if (!node_line.emplace(tags[i], in.no).second) // else the last copy would win
+          in.fail("node tag " + std::to_string(tags[i]) + " given twice (first at line " +
+                  std::to_string(node_line[tags[i]]) + ")");
         fd.coords[tags[i]] = {in.toReal(x[0]), in.toReal(x[1]), in.toReal(x[2])};
       }
     }

@@ -26,7 +26,7 @@ namespace scpdyn
 /// than 4.1 or a binary file, an unsupported element type in the top dimension, a physical
 /// group of the top dimension mixing element types or an element in two such groups, a
 /// face-set element that is not an external face of any part (e.g. a separate
-/// lower-dimensional mesh mixed with the top-dimensional one), unknown node tags, a 2D mesh
+/// lower-dimensional mesh mixed with the top-dimensional one), unknown or duplicate node tags, a 2D mesh
 /// off the z = 0 plane, and inverted or degenerate elements.
 HostMesh readGmsh41(const std::string &path);
 

@@ -1,4 +1,5 @@
 #include "mesh/MeshGenerators.hpp"
+#include "core/RealText.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -60,7 +61,7 @@ void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
   for (int d = 0; d < dim; ++d)
     if (cells[d] < 1 || !(size[d] > 0))
       throw std::runtime_error("mesh part '" + name + "': cells (" + std::to_string(cells[d]) +
-                               ") and size (" + std::to_string(size[d]) + " m) along axis " +
+                               ") and size (" + formatReal(size[d]) + " m) along axis " +
                                std::to_string(d) + " must be positive");
   setDimension(mesh, type, name);
 

@@ -1,4 +1,5 @@
 #include "mesh/MeshOps.hpp"
+#include "core/RealText.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -54,7 +55,7 @@ std::string elementProblem(const HostMesh &mesh, ElementType type, const Index *
       const Real cross = e1[0] * e2[1] - e1[1] * e2[0];
       if (!(cross > kDegenerate * norm(e1) * norm(e2)))
         return "inverted or degenerate at corner " + std::to_string(i) + " (signed corner area " +
-               std::to_string(0.5 * cross) + " m^2)";
+               formatReal(0.5 * cross) + " m^2)";
     }
     return "";
   case ElementType::Hex8:
@@ -76,7 +77,7 @@ std::string elementProblem(const HostMesh &mesh, ElementType type, const Index *
     const Vec3 e1 = sub(x(1), x(0)), e2 = sub(x(2), x(0)), e3 = sub(x(3), x(0));
     const Real v = det3(e1, e2, e3);
     if (!(v > kDegenerate * norm(e1) * norm(e2) * norm(e3)))
-      return "inverted or degenerate (6 x volume " + std::to_string(v) + " m^3)";
+      return "inverted or degenerate (6 x volume " + formatReal(v) + " m^3)";
     return "";
   }
   }

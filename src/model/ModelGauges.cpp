@@ -1,6 +1,7 @@
 // Set-up of the gauges: each resolved to a node or element of the whole mesh and kept by the
 // rank that holds it.
 #include "model/ModelSetup.hpp"
+#include "core/RealText.hpp"
 
 #include "contact/ContactSystem.hpp"
 #include "contact/JointGauge.hpp"
@@ -29,6 +30,24 @@ void ModelSetup::setupGauges()
       throw InputError(key + ".kind: a joint gauge needs a 'contact' section");
     const bool on_element = spec.kind == GaugeKind::Element;
     Index id = spec.id;
+    if (spec.has_point)
+    {
+      // a point well outside every mesh is a typo (a unit, a sign), not a gauge
+      const int dim = _m.deck.dimension;
+      Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, diag = 0;
+      for (const auto &x : mesh.coords)
+        for (int i = 0; i < dim; ++i)
+          lo[i] = std::min(lo[i], x[size_t(i)]), hi[i] = std::max(hi[i], x[size_t(i)]);
+      for (int i = 0; i < dim; ++i)
+        diag += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+      const Real margin = 0.1 * std::sqrt(diag);
+      for (int i = 0; i < dim; ++i)
+        if (spec.point[size_t(i)] < lo[i] - margin || spec.point[size_t(i)] > hi[i] + margin)
+          throw InputError(key + ".point: coordinate " + std::to_string(i) + " = " +
+                           formatReal(spec.point[size_t(i)]) + " m lies outside the meshes (" +
+                           formatReal(lo[i]) + " to " + formatReal(hi[i]) +
+                           " m, with a margin of 10 % of their diagonal)");
+    }
     if (spec.has_point)
     {
       // nearest node, or the element with the nearest centroid

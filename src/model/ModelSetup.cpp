@@ -3,10 +3,12 @@
 // the gauges are in the files beside this one.
 #include "model/ModelSetup.hpp"
 #include "core/HostCopy.hpp"
+#include "core/RealText.hpp"
 
 #include "bc/TimeFunctions.hpp"
 #include "contact/ContactSystem.hpp"
 #include "element/ElementKinematics.hpp"
+#include "input/YamlReader.hpp"
 #include "integrate/LateNodes.hpp"
 #include "integrate/NodeUpdate.hpp"
 #include "material/MaterialLibrary.hpp"
@@ -19,11 +21,35 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iterator>
+#include <limits>
+#include <map>
 #include <numeric>
+#include <unistd.h>
 
 namespace scpdyn
 {
+namespace
+{
+
+// Peak resident memory of a run per element and per node of its mesh (checkMeshSize()),
+// measured: 1.05 GB for a 100^3 hex8 block (1e6 elements, 1.03e6 nodes, one cycle with its two
+// field frames), 157 MB for 50^3
+constexpr long double kSetupBytesPerElement = 900, kSetupBytesPerNode = 150;
+
+/// "; did you mean 'x'?" or the list of the sets there are (deck and gmsh sets alike).
+template <class Sets>
+std::string setSuggestion(const std::string &name, const Sets &sets)
+{
+  std::vector<std::string> names;
+  for (const auto &kv : sets)
+    names.push_back(kv.first);
+  return names.empty() ? std::string(" (the deck and its meshes define no such set)")
+                       : input_impl::suggestion(name, names);
+}
+
+} // namespace
 
 namespace
 {
@@ -107,8 +133,75 @@ void ModelSetup::run()
     _m.dd->halo_bytes_setup = _m.dd->halo->bytesSent();
 }
 
+void ModelSetup::warnUnconnectedGroups(const HostMesh &g, const std::string &key) const
+{
+  // each physical group of a gmsh file is its own part with its own copy of the nodes: groups
+  // drawn as one body (materials, regions) then touch without being joined
+  std::map<std::array<Real, 3>, int> part_at;
+  std::map<std::pair<int, int>, long> shared;
+  for (size_t p = 0; p < g.parts.size(); ++p)
+  {
+    std::vector<Index> nodes(g.parts[p].connectivity.begin(), g.parts[p].connectivity.end());
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (Index n : nodes)
+    {
+      const auto it = part_at.emplace(g.coords[size_t(n)], int(p)).first;
+      if (it->second != int(p))
+        ++shared[{it->second, int(p)}];
+    }
+  }
+  for (const auto &kv : shared)
+    std::fprintf(stderr,
+                 "scpdyn: warning: %s: physical groups '%s' and '%s' share %ld node positions "
+                 "but are not joined (merge_nodes: false): they are separate bodies unless a "
+                 "contact surface ties them; merge_nodes: true joins them\n",
+                 key.c_str(), g.parts[size_t(kv.first.first)].name.c_str(),
+                 g.parts[size_t(kv.first.second)].name.c_str(), kv.second);
+}
+
+void ModelSetup::checkMeshSize() const
+{
+  // counts in long double: a deck's [2147483647, 1] must not overflow before it is refused
+  long double elements = 0, nodes = 0;
+  const int dim = _m.deck.dimension;
+  for (const PartSpec &spec : _m.deck.parts)
+  {
+    const MeshSpec &m = spec.mesh;
+    if (m.type == MeshType::Gmsh)
+      continue; // bounded by the file, read as it is
+    long double cells = 1, cell_nodes = 1, bricks = 1;
+    for (int d = 0; d < dim; ++d)
+    {
+      cells *= m.elements[size_t(d)];
+      cell_nodes *= m.elements[size_t(d)] + 1.0L;
+      if (m.type == MeshType::BrickWall) // a staggered course has one brick more
+        bricks *= m.count[size_t(d)] + (d == 0 ? 1.0L : 0.0L);
+    }
+    const long double per_cell = m.element == ElementType::Tet4 ? 6 : 1;
+    elements += bricks * cells * per_cell;
+    nodes += bricks * cell_nodes;
+  }
+  const long double index_limit = std::numeric_limits<Index>::max();
+  if (elements > index_limit || nodes > index_limit)
+    throw InputError(_m.deck.path + ": parts: the meshes have " + formatReal(double(elements)) +
+                     " elements and " + formatReal(double(nodes)) +
+                     " nodes, beyond the index limit of " + formatReal(double(index_limit)) +
+                     " per rank");
+  // every rank holds the whole mesh while it sets up
+  const long double bytes = kSetupBytesPerElement * elements + kSetupBytesPerNode * nodes;
+  const long double physical = (long double)sysconf(_SC_PHYS_PAGES) * sysconf(_SC_PAGE_SIZE);
+  if (physical > 0 && bytes > 0.8L * physical)
+    throw InputError(_m.deck.path + ": parts: the meshes have " + formatReal(double(elements)) +
+                     " elements and " + formatReal(double(nodes)) + " nodes: about " +
+                     formatReal(std::round(double(bytes / (1 << 30)) * 10) / 10) +
+                     " GiB per rank to set up, more than 80 % of this machine's " +
+                     formatReal(std::round(double(physical / (1 << 30)) * 10) / 10) + " GiB");
+}
+
 void ModelSetup::setupMesh()
 {
+  checkMeshSize();
   std::vector<int> merge_parts;
   for (size_t s = 0; s < _m.deck.parts.size(); ++s)
   {
@@ -126,6 +219,8 @@ void ModelSetup::setupMesh()
       else
       {
         HostMesh g = readGmsh41(m.file);
+        if (!spec.merge_nodes && _m.rank == 0)
+          warnUnconnectedGroups(g, "parts[" + std::to_string(s) + "] ('" + spec.name + "')");
         if (_m.mesh.dim != 0 && g.dim != _m.mesh.dim)
           throw std::runtime_error("mesh dimension " + std::to_string(g.dim) +
                                    " differs from the other parts");
@@ -266,6 +361,15 @@ void ModelSetup::setupFields()
         for (int i = 0; i < 3; ++i)
           x[a][i] = _m.mesh.coords[size_t(n)][size_t(i)];
       }
+      if (axi)
+        for (int a = 0; a < nn; ++a)
+          if (x[a][0] < 0)
+            throw InputError(_m.deck.path + ": parts[" + std::to_string(p) + "] ('" + part.name +
+                             "'): node " +
+                             std::to_string(globalNode(part.connectivity[size_t(e * nn + a)])) +
+                             " is at radius x = " + formatReal(x[a][0]) +
+                             " < 0: an axisymmetric mesh lies in x >= 0 (x is the radius, the "
+                             "axis is x = 0)");
       const Real m = mat.density * hostElementVolume(part.type, x, axi);
       h_emass(d) = m;
       h_part(d) = Index(p);
@@ -276,7 +380,7 @@ void ModelSetup::setupFields()
   }
   for (Index n = 0; n < num_nodes; ++n)
     if (!(h_mass(n) > 0))
-      throw InputError(_m.deck.path + ": parts: node " + std::to_string(n) +
+      throw InputError(_m.deck.path + ": parts: node " + std::to_string(globalNode(n)) +
                        " belongs to no element (zero mass)");
   Kokkos::deep_copy(_m.nodes.x0, h_x0);
   Kokkos::deep_copy(_m.nodes.x, h_x0);
@@ -370,6 +474,9 @@ void ModelSetup::setupSets()
     }
     checkSetNotEmpty(nodes.size(),
                      _m.deck.path + ": " + key + ": node set '" + s.name + "' selects no node");
+    if (_m.mesh.node_sets.count(s.name)) // else the deck's set silently replaced the file's
+      throw InputError(_m.deck.path + ": " + key + ".name: '" + s.name +
+                       "' is also a physical group of a gmsh mesh; rename one of them");
     _m.node_sets[s.name] = nodes;
   }
   for (size_t i = 0; i < _m.deck.face_sets.size(); ++i)
@@ -383,6 +490,9 @@ void ModelSetup::setupSets()
       faces = facesInBox(faces, _m.mesh, s.box_min, s.box_max, tol);
     checkSetNotEmpty(faces.size(),
                      _m.deck.path + ": " + key + ": face set '" + s.name + "' selects no face");
+    if (_m.mesh.face_sets.count(s.name))
+      throw InputError(_m.deck.path + ": " + key + ".name: '" + s.name +
+                       "' is also a physical group of a gmsh mesh; rename one of them");
     _m.face_sets[s.name] = faces;
   }
 }
@@ -403,7 +513,9 @@ void ModelSetup::setupBoundaryConditions()
     {
       auto it = _m.face_sets.find(b.set);
       if (it == _m.face_sets.end())
-        throw InputError(key + ".face_set: unknown face set '" + b.set + "'");
+        throw InputError(key + ".face_set (line " + std::to_string(b.set_line) +
+                         "): unknown face set '" + b.set + "'" +
+                         setSuggestion(b.set, _m.face_sets));
       const int k = int(_m.bc.pressure_value.size());
       _m.bc.pressure_value.push_back(b.value);
       _m.bc.pressure_function.push_back(fn);
@@ -426,7 +538,8 @@ void ModelSetup::setupBoundaryConditions()
     }
     auto it = _m.node_sets.find(b.set);
     if (it == _m.node_sets.end())
-      throw InputError(key + ".node_set: unknown node set '" + b.set + "'");
+      throw InputError(key + ".node_set (line " + std::to_string(b.set_line) +
+                       "): unknown node set '" + b.set + "'" + setSuggestion(b.set, _m.node_sets));
     if (b.type == ConditionType::Velocity)
     {
       const int k = int(_m.bc.velocity_value.size());
@@ -527,7 +640,8 @@ void ModelSetup::setupInitialState()
     const auto set = _m.node_sets.find(iv.node_set);
     if (set == _m.node_sets.end())
       throw InputError(_m.deck.path + ": initial_conditions[" + std::to_string(c) +
-                       "].node_set: no node set named '" + iv.node_set + "'");
+                       "].node_set (line " + std::to_string(iv.set_line) + "): unknown node set '" +
+                       iv.node_set + "'" + setSuggestion(iv.node_set, _m.node_sets));
     for (Index n : set->second)
       for (int i = 0; i < dim; ++i)
       {
@@ -604,8 +718,9 @@ void ModelSetup::setupInitialState()
                        " is inverted or degenerate");
     }
   }
-  if (!(dt_elem > 0))
-    throw InputError(_m.deck.path + ": parts: element " + std::to_string(Index(-dt_elem) - 1) +
+  if (!(dt_elem > 0)) // the mesh id, as the decomposed path names it
+    throw InputError(_m.deck.path + ": parts: element " +
+                     std::to_string(globalElement(meshElementOfDevice(Index(-dt_elem) - 1))) +
                      " is inverted or degenerate");
   _m.initial_element_step = dt_elem;
 }

@@ -18,6 +18,8 @@ public:
 private:
   Model &_m;
 
+  void checkMeshSize() const;
+  void warnUnconnectedGroups(const HostMesh &g, const std::string &key) const;
   void setupMesh();
   void decompose();
   void setupFields();
@@ -33,6 +35,7 @@ private:
   void unifyNodeSet(std::vector<Index> &nodes) const;
   Index globalElement(Index mesh_element) const { return _m.globalElement(mesh_element); }
   Index meshElementOfDevice(Index device) const { return _m.meshElementOfDevice(device); }
+  Index globalNode(Index local) const { return _m.globalNode(local); }
 };
 
 } // namespace scpdyn

@@ -309,4 +309,13 @@ TEST(GmshReader, HandWrittenErrors)
                                         "$EndElements\n";
   e = errorOf(dir + "badnode.msh");
   EXPECT_NE(e.find("badnode.msh:34: unknown node tag 42"), std::string::npos) << e;
+  // a node tag given twice: refused, not the last copy silently winning
+  std::string twice = head;
+  twice.replace(twice.find("1\n2\n3\n4\n5\n6\n7\n8\n9\n"), 18, "1\n2\n3\n4\n5\n6\n7\n8\n3\n");
+  std::ofstream(dir + "twice.msh") << twice
+                                   << "$Elements\n1 1 1 1\n3 1 5 1\n1 1 2 3 4 5 6 7 8\n"
+                                      "$EndElements\n";
+  e = errorOf(dir + "twice.msh");
+  EXPECT_NE(e.find("twice.msh:29: node tag 3 given twice (first at line 23)"), std::string::npos)
+      << e;
 }
