@@ -17,7 +17,10 @@ namespace scpdyn
 inline std::string formatReal(Real x)
 {
   if (x == 0 || !std::isfinite(x))
-    return x == 0 ? (std::signbit(x) ? "-0" : "0") : (std::isnan(x) ? "nan" : x > 0 ? "inf" : "-inf");
+    return x == 0 ? (std::signbit(x) ? "-0" : "0")
+                  : (std::isnan(x) ? "nan"
+                     : x > 0       ? "inf"
+                                   : "-inf");
   char buf[48];
   int digits = 1;
   for (; digits < 17; ++digits)

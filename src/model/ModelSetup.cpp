@@ -16,6 +16,7 @@
 #include "mesh/GmshReader.hpp"
 #include "mesh/MeshGenerators.hpp"
 #include "mesh/MeshOps.hpp"
+#include "mesh/PartOverlap.hpp"
 #include "parallel/Decomposition.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -270,6 +271,14 @@ void ModelSetup::setupMesh()
   {
     throw InputError(_m.deck.path + ": parts: " + e.what());
   }
+  if (_m.rank == 0)
+    for (const PartOverlap &o : overlappingParts(_m.mesh))
+      std::fprintf(stderr,
+                   "scpdyn: warning: parts: part '%s' overlaps part '%s' at t = 0 (%ld element "
+                   "centroids of the first inside elements of the second, e.g. element %ld): "
+                   "overlapping parts pass through each other, contact or not\n",
+                   _m.mesh.parts[size_t(o.part_a)].name.c_str(),
+                   _m.mesh.parts[size_t(o.part_b)].name.c_str(), o.count, long(o.element));
   _m.external_faces = extractExternalFaces(_m.mesh);
 }
 

@@ -66,8 +66,7 @@ TEST(SetupChecks, NegativeRadiusInAxisymmetryIsNamed)
           "parts:\n  - {name: ring, material: rock, mesh: {elements: [2, 2], origin: [-0.05, "
           "0], size: [0.1, 0.1]}}\n",
       "negative_radius");
-  EXPECT_NE(e.find("parts[0] ('ring'): node 0 is at radius x = -0.05 < 0"), std::string::npos)
-      << e;
+  EXPECT_NE(e.find("parts[0] ('ring'): node 0 is at radius x = -0.05 < 0"), std::string::npos) << e;
   EXPECT_EQ(e.find("zero mass"), std::string::npos) << e;
 }
 
@@ -86,9 +85,9 @@ TEST(SetupChecks, GmshSetTypoHasLineAndSuggestion)
 
 TEST(SetupChecks, DeckSetNamedLikeAGmshGroupIsRefused)
 {
-  const std::string e = setupError(
-      gmshDeck("node_sets:\n  - {name: bottom, box: {min: [0, 0], max: [2, 0]}}\n"),
-      "gmsh_set_clash");
+  const std::string e =
+      setupError(gmshDeck("node_sets:\n  - {name: bottom, box: {min: [0, 0], max: [2, 0]}}\n"),
+                 "gmsh_set_clash");
   EXPECT_NE(e.find("node_sets[0].name: 'bottom' is also a physical group of a gmsh mesh"),
             std::string::npos)
       << e;
@@ -127,8 +126,7 @@ TEST(SetupChecks, MeshBeyondTheIndexOrTheMemoryIsRefusedFirst)
   deck = base;
   deck.replace(deck.find("ELEMENTS"), 8, "[1200, 1200, 1000]"); // 1.44e9 hexes, ~1.4 TB
   e = setupError(deck, "too_big_memory");
-  EXPECT_NE(e.find("GiB per rank to set up, more than 80 % of this machine's"),
-            std::string::npos)
+  EXPECT_NE(e.find("GiB per rank to set up, more than 80 % of this machine's"), std::string::npos)
       << e;
 }
 
