@@ -57,6 +57,8 @@ public:
 
   Real time() const { return _time; }
   Real dt() const { return _dt; }
+  /// \brief The time step of the next cycle (before the first cycle: the first time step).
+  Real nextDt() const { return _dt_next; }
   /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
   ElementControls elementControls() const
   {
