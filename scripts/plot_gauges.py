@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Plot a run's gauges (gauges.csv) and energies (history.csv) into gauges.png.
+"""Plot a run's gauges (gauges.csv, if the deck has gauges) and energies (history.csv) into
+gauges.png.
 
 usage: /usr/bin/python3 scripts/plot_gauges.py OUTPUT_DIR
 One panel per gauge quantity kind (stress, velocity, ...), time in microseconds.
@@ -26,7 +27,9 @@ STRESSES = ("sxx", "syy", "szz", "sxy", "syz", "szx", "pressure", "q")
 
 
 def main(out_dir):
-    gauges = read_csv(os.path.join(out_dir, "gauges.csv"))
+    # scpdyn writes gauges.csv only when the deck has gauges
+    gauges_path = os.path.join(out_dir, "gauges.csv")
+    gauges = read_csv(gauges_path) if os.path.exists(gauges_path) else {"time": []}
     history = read_csv(os.path.join(out_dir, "history.csv"))
     t = [1e6 * x for x in gauges["time"]]
     groups = {}

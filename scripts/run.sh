@@ -1,26 +1,34 @@
 #!/usr/bin/env bash
 # Run a deck: set-up and build if needed, run scpdyn, plot the gauges.
-#   scripts/run.sh [DECK [scpdyn options]]     (default deck: the project's default scene)
-# Threads: OMP_NUM_THREADS (default: all cores). Results: out/<deck name>/ unless -o DIR.
+#   scripts/run.sh [DECK [scpdyn options]]   (default deck: the project's default scene)
+#   scripts/run.sh --help                    this text (scpdyn's options: scpdyn --help)
+# Results: -o DIR if given, else the deck's output.directory, else out/<deck name>.
+# Threads: OMP_NUM_THREADS (default: all cores). SCPDYN_BIN=PATH runs that scpdyn binary
+# instead of setting up and building one.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+case "${1:-}" in
+  -h | --help)
+    sed -n '2,7p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+    exit 0
+    ;;
+esac
 DEFAULT_DECK="$ROOT/inputs/paper/fig5_implicit_S0.5.yaml"
 DECK="${1:-$DEFAULT_DECK}"
 [ $# -gt 0 ] && shift
-[ -f "$DECK" ] || { echo "scripts/run.sh: no deck '$DECK'" >&2; exit 2; }
-BUILD_DIR="$(bash "$ROOT/scripts/build.sh" | tail -n 1)"
-export OMP_PROC_BIND="${OMP_PROC_BIND:-spread}" OMP_PLACES="${OMP_PLACES:-threads}"
-# the output directory: -o DIR if given, else the deck's own, else out/<deck name>
-OUT=""
-args=("$@")
-for ((i = 0; i < ${#args[@]}; i++)); do
-  if [ "${args[$i]}" = "-o" ] && [ $((i + 1)) -lt ${#args[@]} ]; then OUT="${args[$((i + 1))]}"; fi
-done
-if [ -z "$OUT" ]; then
-  name="$(basename "$DECK")"; OUT="out/${name%.*}"
-  set -- -o "$OUT" "$@"
+[ -f "$DECK" ] || { echo "scripts/run.sh: no deck '$DECK' (usage: scripts/run.sh --help)" >&2; exit 2; }
+if [ -n "${SCPDYN_BIN:-}" ]; then
+  BIN="$SCPDYN_BIN"
+else
+  BIN="$(bash "$ROOT/scripts/build.sh" | tail -n 1)/bin/scpdyn"
 fi
-"$BUILD_DIR/bin/scpdyn" "$DECK" "$@"
+# scpdyn chooses the output directory (-o, the deck's output.directory, out/<deck name>) and
+# names it on its last line: "scpdyn: done, ... results in DIR"
+log="$(mktemp)"
+trap 'rm -f "$log"' EXIT
+"$BIN" "$DECK" "$@" | tee "$log"
+OUT="$(sed -n 's/^scpdyn: done, .*; results in //p' "$log" | tail -n 1)"
+[ -n "$OUT" ] || exit 0 # scpdyn --help, --version: nothing to plot
 /usr/bin/python3 "$ROOT/scripts/plot_gauges.py" "$OUT" >&2 || echo "scripts/run.sh: plotting failed" >&2
 echo "results: $OUT (fields.xmf for ParaView, history.csv, gauges.csv, summary.json)"
 echo "plot:    $OUT/gauges.png"

@@ -3,12 +3,15 @@
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
+#include "core/InputError.hpp"
 #include "parallel/Decomposition.hpp"
 #include "material/MaterialLibrary.hpp"
 #include "parallel/Mpi.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <map>
+#include <set>
 
 #include <cmath>
 #include <cstdio>
@@ -71,12 +74,157 @@ ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
   }
   return out;
 }
+
+/// The files a run writes into its directory (and scripts/run.sh's plot of them), removed
+/// before a run so that none of a previous run's is left beside this run's.
+const std::vector<std::string> kRunFiles = {"fields.xmf",
+                                            "fields.h5",
+                                            "contacts.xmf",
+                                            "contacts.h5",
+                                            "history.csv",
+                                            "gauges.csv",
+                                            "summary.json",
+                                            "deck.resolved.yaml",
+                                            "gauges.png",
+                                            "fields.xmf.tmp",
+                                            "contacts.xmf.tmp",
+                                            "summary.json.tmp",
+                                            "deck.resolved.yaml.tmp"};
+
+/// "%.3g" of a byte count with its decimal unit (kB, MB, GB, TB).
+std::string formatBytes(double bytes)
+{
+  const char *units[] = {"B", "kB", "MB", "GB", "TB", "PB"};
+  int u = 0;
+  while (u < 5 && std::abs(bytes) >= 1000)
+    bytes /= 1000, ++u;
+  char text[48];
+  std::snprintf(text, sizeof text, "%.3g %s", bytes, units[u]);
+  return text;
+}
+
+// the widest "%.17g" number (-1.2345678901234567e-300) and its separator
+constexpr double kCsvValueBytes = 25;
+// HDF5 group and dataset headers of one frame, and the frame's share of the XDMF text
+constexpr double kFrameOverheadBytes = 8192;
 } // namespace
+
+double nextOutputTime(double next, double interval, double t, double eps)
+{
+  const double due = t + eps;
+  for (int step = 0; step < 64 && next <= due; ++step)
+    next += interval;
+  if (next > due)
+    return next;
+  const double multiple = (std::floor(due / interval) + 1) * interval;
+  return std::isfinite(multiple) && multiple > due
+             ? multiple
+             : std::nextafter(due, std::numeric_limits<double>::infinity());
+}
+
+RunEstimate estimateRun(const Solver &solver)
+{
+  const Deck &deck = solver.deck();
+  RunEstimate e;
+  e.first_dt = solver.nextDt();
+  const double end = deck.end_time;
+  e.cycles = e.first_dt > 0 && std::isfinite(e.first_dt) ? std::ceil(end / e.first_dt)
+                                                         : std::numeric_limits<double>::infinity();
+  if (deck.max_cycles > 0)
+    e.cycles = std::min(e.cycles, double(deck.max_cycles));
+  // the first row and frame, one per interval (at most one per cycle), and the last
+  auto periodic = [&](double interval) {
+    return interval > 0 ? std::min(e.cycles, std::floor(end / interval) + 1) : e.cycles;
+  };
+  e.history_rows = 1 + periodic(deck.history_interval);
+  e.frames = 1 + (deck.field_interval > 0 ? periodic(deck.field_interval) : 1);
+  const double gauge_columns = solver.gauges().empty() ? 0 : 1 + double(solver.gauges().size());
+  e.row_bytes = kCsvValueBytes * (13 + gauge_columns);
+  std::set<std::string> history_fields;
+  for (const auto &m : solver.materialParams())
+    for (const auto &n : historyNames(m))
+      if (!n.empty())
+        history_fields.insert(n);
+  const double nodes = double(solver.globalNodeCount());
+  const double cells = double(solver.globalElementCount());
+  double contact_faces = solver.contact() ? double(solver.contact()->numOwnFaces()) : 0;
+  if (solver.numRanks() > 1)
+    contact_faces = allReduceSum(contact_faces, solver.comm());
+  // coords, displacement, velocity; stress (6), 5 scalars, the named history fields; a
+  // contact point: its position, vertex and 8 scalars, one CP per contact face at most
+  e.frame_bytes = 8 * (9 * nodes + (11 + double(history_fields.size())) * cells) +
+                  (3 * 8 + 4 + 8 * 8) * contact_faces +
+                  kFrameOverheadBytes * (solver.contact() ? 2 : 1);
+  const double mesh_bytes = 8 * 3 * nodes + 4 * (2 * kMaxElementNodes + 1) * cells;
+  e.bytes = e.history_rows * e.row_bytes + e.frames * e.frame_bytes + mesh_bytes;
+  return e;
+}
+
+std::string estimateRefusal(const Deck &deck, const RunEstimate &e)
+{
+  char text[640];
+  if (!(e.cycles <= deck.max_estimated_cycles))
+  {
+    std::snprintf(text, sizeof text,
+                  "time.max_estimated_cycles: the run needs about %.3g cycles (time.end %.3g s / "
+                  "first time step %.3g s), more than the limit %.3g; check time.courant, "
+                  "time.dt_max and the materials' moduli and densities, set time.max_cycles, or "
+                  "raise time.max_estimated_cycles",
+                  e.cycles, deck.end_time, e.first_dt, deck.max_estimated_cycles);
+    return text;
+  }
+  if (!(e.bytes <= deck.max_output_bytes))
+  {
+    std::snprintf(text, sizeof text,
+                  "output.max_output_bytes: the run would write about %s (%.3g history rows of "
+                  "%s, %.3g field frames of %s), more than the limit %s; raise "
+                  "output.history_interval or output.field_interval, or raise "
+                  "output.max_output_bytes",
+                  formatBytes(e.bytes).c_str(), e.history_rows, formatBytes(e.row_bytes).c_str(),
+                  e.frames, formatBytes(e.frame_bytes).c_str(),
+                  formatBytes(deck.max_output_bytes).c_str());
+    return text;
+  }
+  return std::string();
+}
 
 Outputs::Outputs(const Solver &solver, const std::string &dir) : _solver(solver), _dir(dir)
 {
+  const RunEstimate e = estimateRun(solver);
+  const std::string refusal = estimateRefusal(solver.deck(), e);
+  if (!refusal.empty()) // the same numbers on every rank: all ranks stop here
+    throw InputError(refusal);
   if (root())
-    ensureDirectory(dir);
+    std::fprintf(stderr,
+                 "scpdyn: estimate: %.0f cycles (first dt %.3e s), %.0f history rows, %.0f "
+                 "frames, %s of output\n",
+                 e.cycles, e.first_dt, e.history_rows, e.frames, formatBytes(e.bytes).c_str());
+  std::string error;
+  if (root())
+    try
+    {
+      ensureDirectory(dir);
+      _lock = std::make_unique<OutputDirectoryLock>(dir);
+      if (!_lock->warning().empty())
+        std::fprintf(stderr, "scpdyn: warning: %s\n", _lock->warning().c_str());
+      const std::vector<std::string> removed = removeFiles(dir, kRunFiles);
+      if (!removed.empty())
+      {
+        std::string names;
+        for (const auto &n : removed)
+          names += (names.empty() ? "" : ", ") + n;
+        std::fprintf(stderr, "scpdyn: removed the previous run's outputs from %s: %s\n",
+                     dir.c_str(), names.c_str());
+      }
+    }
+    catch (const std::runtime_error &ex)
+    {
+      error = ex.what();
+    }
+  if (solver.numRanks() > 1)
+    error = firstErrorOfAnyRank(error, solver.comm());
+  if (!error.empty())
+    throw InputError(error);
   _start = _last_progress = std::chrono::steady_clock::now();
 }
 
@@ -159,7 +307,8 @@ void Outputs::begin()
   std::vector<std::string> columns{"time"};
   for (const auto &g : _solver.gauges())
     columns.push_back(g.column);
-  _gauges = std::make_unique<CsvWriter>(_dir + "/gauges.csv", columns);
+  if (!_solver.gauges().empty())
+    _gauges = std::make_unique<CsvWriter>(_dir + "/gauges.csv", columns);
   writeFrame();
   writeRows();
   _next_field = deck.field_interval;
@@ -281,7 +430,8 @@ void Outputs::writeRows()
   _history->row({_solver.time(), double(_solver.cycles()), _solver.dt(), r.kinetic, r.internal,
                  r.hourglass, r.external_work, r.contact, r.balance_error, r.momentum[0],
                  r.momentum[1], r.momentum[2], r.contact_dissipation});
-  _gauges->row(row);
+  if (_gauges)
+    _gauges->row(row);
 }
 
 void Outputs::afterCycle()
@@ -292,14 +442,13 @@ void Outputs::afterCycle()
   if (deck.field_interval > 0 && t >= _next_field - eps)
   {
     writeFrame();
-    while (_next_field <= t + eps)
-      _next_field += deck.field_interval;
+    _next_field = nextOutputTime(_next_field, deck.field_interval, t, eps);
   }
   if (deck.history_interval <= 0 || t >= _next_history - eps)
   {
     writeRows();
-    while (deck.history_interval > 0 && _next_history <= t + eps)
-      _next_history += deck.history_interval;
+    if (deck.history_interval > 0)
+      _next_history = nextOutputTime(_next_history, deck.history_interval, t, eps);
   }
   const auto now = std::chrono::steady_clock::now();
   if (root() &&
@@ -307,7 +456,11 @@ void Outputs::afterCycle()
   {
     _last_progress = now;
     const double wall = std::chrono::duration<double>(now - _start).count();
-    const double frac = t / deck.end_time;
+    // the run ends at the end time or at time.max_cycles, whichever comes first
+    double frac = t / deck.end_time;
+    if (deck.max_cycles > 0)
+      frac = std::max(frac, double(_solver.cycles()) / double(deck.max_cycles));
+    frac = std::min(frac, 1.0);
     std::fprintf(stderr, "scpdyn: cycle %ld  t = %.4e s  dt = %.3e s  %5.1f%%  ETA %.1f s\n",
                  _solver.cycles(), t, _solver.dt(), 100 * frac,
                  frac > 0 ? wall * (1 - frac) / frac : 0.0);
@@ -388,7 +541,8 @@ void Outputs::finish(const std::string &error)
   if (!root())
     return;
   _history->close();
-  _gauges->close();
+  if (_gauges)
+    _gauges->close();
   if (_contacts)
     _contacts->close();
   JsonObject timers, timer_stats;

@@ -1,10 +1,14 @@
 #pragma once
 /// \file Outputs.hpp
-/// \brief Step 13's outputs: field frames (HDF5 + XDMF), history.csv, gauges.csv,
-/// summary.json, the resolved deck and a progress line on stderr. Decomposed runs: every
-/// member is collective; rank 0 writes the files, in the serial layout.
+/// \brief Step 13's outputs: field frames (HDF5 + XDMF), history.csv, gauges.csv (with
+/// gauges), summary.json, the resolved deck and a progress line on stderr. Before the first
+/// cycle: an estimate of the run's cycles and output size (refused above the deck's limits),
+/// the lock of the output directory and the removal of a previous run's files. Decomposed
+/// runs: every member is collective; rank 0 locks the directory and writes the files, in the
+/// serial layout.
 #include "driver/OutputGather.hpp"
 #include "io/FieldWriter.hpp"
+#include "io/OutputDirectory.hpp"
 #include "io/TextOutput.hpp"
 
 #include <chrono>
@@ -15,10 +19,40 @@ namespace scpdyn
 {
 
 class Solver;
+struct Deck;
+
+/// \brief What a run will do, estimated before its first cycle from the end time, the first
+/// time step, time.max_cycles, the output intervals and the model's size.
+struct RunEstimate
+{
+  double first_dt = 0;     ///< s
+  double cycles = 0;       ///< end time / first dt (rounded up), at most time.max_cycles
+  double history_rows = 0; ///< rows of history.csv (and gauges.csv)
+  double frames = 0;       ///< field frames (and contact frames)
+  double row_bytes = 0;    ///< one row of history.csv plus one of gauges.csv
+  double frame_bytes = 0;  ///< one field frame plus one contact frame, with their XDMF text
+  double bytes = 0;        ///< all outputs
+};
+
+/// \brief The estimate of `solver`'s run (collective: the same numbers on every rank).
+RunEstimate estimateRun(const Solver &solver);
+
+/// \brief Empty, or the refusal of a run whose estimate exceeds time.max_estimated_cycles or
+/// output.max_output_bytes, naming the key.
+std::string estimateRefusal(const Deck &deck, const RunEstimate &estimate);
+
+/// \brief The time a periodic output is next due after writing at time `t`: `next` advanced
+/// by whole intervals past t + eps, or, when the interval is too small to get there in a few
+/// steps (below the time step, or below the round-off of `next`), the first representable time
+/// past t + eps, so the output is written once per cycle at most.
+double nextOutputTime(double next, double interval, double t, double eps);
 
 class Outputs
 {
 public:
+  /// \brief Estimates the run and prints the estimate (an InputError above the deck's limits),
+  /// locks `dir` and removes a previous run's outputs from it (an InputError naming the
+  /// directory when another live run holds it).
   Outputs(const Solver &solver, const std::string &dir);
   ~Outputs();
   /// \brief Writes the resolved deck and the initial frame and rows.
@@ -36,6 +70,7 @@ private:
 
   const Solver &_solver;
   std::string _dir;
+  std::unique_ptr<OutputDirectoryLock> _lock; ///< rank 0; released after the writers close
   std::unique_ptr<FieldWriter> _fields;
   std::unique_ptr<PointSetWriter> _contacts; ///< contacts.xmf/h5, with contact surfaces only
   bool _has_contacts = false;

@@ -60,6 +60,8 @@ public:
   Real dt() const { return _dt; }
   /// \brief The deck's gravity at time t: its vector times its function, if any [m/s^2].
   std::array<Real, 3> gravityAt(Real t) const;
+  /// \brief The time step of the next cycle (before the first cycle: the first time step).
+  Real nextDt() const { return _dt_next; }
   /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
   ElementControls elementControls() const
   {

@@ -9,8 +9,10 @@
 #include <mpi.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
+#include <unistd.h>
 
 namespace
 {
@@ -20,10 +22,11 @@ const char *kUsage =
     "  DECK.yaml   input deck (keys: docs/input.md)\n"
     "  -o DIR      output directory (default: output.directory of the deck, else out/<deck name>)\n"
     "  --help      this text;  --version  the version\n"
-    "  Threads: OMP_NUM_THREADS=T (or --kokkos-num-threads=T); bind with OMP_PROC_BIND=spread.\n"
+    "  Threads: OMP_NUM_THREADS=T (or --kokkos-num-threads=T); binding: OMP_PROC_BIND=spread\n"
+    "           and OMP_PLACES=threads unless set.\n"
     "  Ranks:   mpirun -np R scpdyn DECK.yaml (hybrid: R ranks x OMP_NUM_THREADS threads).\n"
-    "  Outputs: fields.xmf/.h5 (ParaView), history.csv, gauges.csv, summary.json,\n"
-    "           deck.resolved.yaml.\n";
+    "  Outputs: fields.xmf/.h5 (ParaView), history.csv, gauges.csv (with gauges),\n"
+    "           contacts.xmf/.h5 (with contact), summary.json, deck.resolved.yaml.\n";
 
 std::string deckStem(const std::string &path)
 {
@@ -48,6 +51,15 @@ int main(int argc, char **argv)
       return 0;
     }
   }
+  // The binding Kokkos recommends (and warns without, on every run) unless the user chose one.
+  // The OpenMP runtime reads its environment when it is loaded, before main, so the process
+  // starts itself again with the variables set; if that is not possible, it runs unbound.
+  if (!std::getenv("OMP_PROC_BIND"))
+  {
+    setenv("OMP_PROC_BIND", "spread", 1);
+    setenv("OMP_PLACES", "threads", 0);
+    execv("/proc/self/exe", argv);
+  }
   scpdyn::MpiSession mpi(argc, argv);
   Kokkos::initialize(argc, argv);
   int status = 0;
@@ -59,6 +71,12 @@ int main(int argc, char **argv)
       const std::string a = argv[i];
       if (a == "-o" && i + 1 < argc)
         out_dir = argv[++i];
+      else if (a == "-o")
+      {
+        if (root)
+          std::fprintf(stderr, "scpdyn: -o needs a directory\n%s", kUsage);
+        status = 2;
+      }
       else if (!a.empty() && a[0] == '-')
       {
         if (root)

@@ -215,6 +215,7 @@ struct Deck
   Real courant = 0.5; ///< S in (0, 1]
   Real dt_max = 1e30;
   long max_cycles = -1;
+  Real max_estimated_cycles = 1e9; ///< refuse a run estimated to need more cycles
 
   // numerics
   Real hourglass_coefficient = 0.05;
@@ -231,6 +232,7 @@ struct Deck
   Real field_interval = 0;      ///< 0: first and last only
   Real history_interval = 0;    ///< 0: every cycle
   Real progress_interval = 2.0; ///< wall seconds between progress lines
+  Real max_output_bytes = 50e9; ///< refuse a run estimated to write more
 
   std::vector<MaterialSpec> materials;
   std::vector<PartSpec> parts;

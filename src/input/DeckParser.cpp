@@ -109,7 +109,8 @@ void parseTime(const YamlMap &root, Deck &deck)
 {
   if (!root.has("time"))
     root.missing("time");
-  const YamlMap t = root["time"].map({"end", "courant", "dt_max", "max_cycles"});
+  const YamlMap t =
+      root["time"].map({"end", "courant", "dt_max", "max_cycles", "max_estimated_cycles"});
   deck.end_time = requireReal(t, "end", isPositive, "> 0");
   deck.courant = readReal(
       t, "courant", deck.courant, [](Real s) { return s > 0 && s <= 1; }, "in (0, 1]");
@@ -120,6 +121,8 @@ void parseTime(const YamlMap &root, Deck &deck)
     if (deck.max_cycles <= 0)
       t["max_cycles"].fail("must be an integer > 0, got " + t["max_cycles"].text());
   }
+  deck.max_estimated_cycles =
+      readReal(t, "max_estimated_cycles", deck.max_estimated_cycles, isPositive, "> 0");
 }
 
 void parseNumerics(const YamlMap &root, Deck &deck)
@@ -153,13 +156,14 @@ void parseOutput(const YamlMap &root, Deck &deck, const std::string &stem)
   deck.output_dir = "out/" + stem;
   if (!root.has("output"))
     return;
-  const YamlMap o =
-      root["output"].map({"directory", "field_interval", "history_interval", "progress_interval"});
+  const YamlMap o = root["output"].map(
+      {"directory", "field_interval", "history_interval", "progress_interval", "max_output_bytes"});
   deck.output_dir = o.string("directory", deck.output_dir);
   deck.field_interval = readReal(o, "field_interval", 0, isNonNegative, ">= 0");
   deck.history_interval = readReal(o, "history_interval", 0, isNonNegative, ">= 0");
   deck.progress_interval =
       readReal(o, "progress_interval", deck.progress_interval, isPositive, "> 0");
+  deck.max_output_bytes = readReal(o, "max_output_bytes", deck.max_output_bytes, isPositive, "> 0");
 }
 
 std::map<std::string, int> parseFunctions(const YamlMap &root, Deck &deck)

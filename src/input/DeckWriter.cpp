@@ -226,6 +226,7 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   real(out << YAML::Key << "dt_max" << YAML::Value, deck.dt_max);
   if (deck.max_cycles > 0) // no key: no cycle limit
     out << YAML::Key << "max_cycles" << YAML::Value << deck.max_cycles;
+  real(out << YAML::Key << "max_estimated_cycles" << YAML::Value, deck.max_estimated_cycles);
   out << YAML::EndMap;
 
   out << YAML::Key << "numerics" << YAML::Value << YAML::BeginMap;
@@ -252,6 +253,7 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   real(out << YAML::Key << "field_interval" << YAML::Value, deck.field_interval);
   real(out << YAML::Key << "history_interval" << YAML::Value, deck.history_interval);
   real(out << YAML::Key << "progress_interval" << YAML::Value, deck.progress_interval);
+  real(out << YAML::Key << "max_output_bytes" << YAML::Value, deck.max_output_bytes);
   out << YAML::EndMap;
 
   beginList(out, "functions", deck.functions.empty());

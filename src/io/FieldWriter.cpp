@@ -420,16 +420,7 @@ void FieldWriter::writeXdmf() const
   x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
 
   // Write-then-rename: readers and post-crash inspection only ever see a complete file.
-  const std::string tmp = _xmf_path + ".tmp";
-  std::FILE *fp = std::fopen(tmp.c_str(), "w");
-  if (!fp)
-    throw std::runtime_error("FieldWriter: cannot create XDMF file '" + tmp + "'");
-  const std::string text = x.str();
-  const bool ok = std::fwrite(text.data(), 1, text.size(), fp) == text.size();
-  if (std::fclose(fp) != 0 || !ok)
-    throw std::runtime_error("FieldWriter: cannot write XDMF file '" + tmp + "'");
-  if (std::rename(tmp.c_str(), _xmf_path.c_str()) != 0)
-    throw std::runtime_error("FieldWriter: cannot rename '" + tmp + "' to '" + _xmf_path + "'");
+  replaceFile(_xmf_path, x.str());
 }
 
 } // namespace scpdyn

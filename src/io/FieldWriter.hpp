@@ -146,10 +146,12 @@ struct PointFrame
 };
 
 /// \brief Appends point frames to `dir/<name>.h5` and keeps `dir/<name>.xmf` (an XDMF temporal
-/// collection of Polyvertex grids) valid after each one; ParaView and meshio open it. A frame
+/// collection of Polyvertex grids, one vertex cell per point) valid after each one; ParaView
+/// (XDMF and XDMF3 readers) and meshio's time-series reader open it. A frame
 /// without points is written as one placeholder point at the origin whose scalars are all
 /// `empty_value`, because XDMF readers reject empty grids.
-/// Layout: /frames/<k> with attributes `time`, `cycle`, `points` (n, 3) and `point_data/<name>`.
+/// Layout: /frames/<k> with attributes `time`, `cycle`; datasets `points` (n, 3), `vertices`
+/// (n, 1) = 0 .. n-1 (the topology) and `point_data/<name>`.
 class PointSetWriter
 {
 public:

@@ -8,6 +8,8 @@
 #include <algorithm>
 
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -17,6 +19,36 @@ namespace scpdyn
 {
 namespace h5detail
 {
+
+/// HDF5 prints its whole error stack on every failure (some 200 lines on a full disk, none of
+/// them saying so plainly); the writers report one line instead, with failureCause().
+inline void silenceErrorStack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
+/// The cause of the HDF5 call that has just failed, read from its error stack: the system
+/// error the file driver recorded ("errno = 28, error message = ..." -> strerror(28)), else
+/// the innermost message. Call it before any other HDF5 call, which would clear the stack.
+inline std::string failureCause()
+{
+  struct Found
+  {
+    int system_error = 0;
+    std::string innermost;
+  } found;
+  auto visit = [](unsigned n, const H5E_error2_t *e, void *data) -> herr_t {
+    Found &f = *static_cast<Found *>(data);
+    const std::string desc = e && e->desc ? e->desc : "";
+    if (n == 0)
+      f.innermost = desc;
+    const auto at = desc.find("errno = ");
+    if (f.system_error == 0 && at != std::string::npos)
+      f.system_error = std::atoi(desc.c_str() + at + 8);
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, visit, &found);
+  if (found.system_error > 0)
+    return std::strerror(found.system_error);
+  return found.innermost.empty() ? std::string("unknown HDF5 error") : found.innermost;
+}
 
 /// File-access list: POSIX sec2 driver for a serial run, MPI-IO for a decomposed one.
 /// File locking is off: with it (the 1.10.7+ default) ParaView and h5py cannot open the file
@@ -40,12 +72,10 @@ inline hid_t makeFileAccessList(const MPI_Comm *comm = nullptr)
 /// The one place that creates the field file, for whatever driver `fapl` selects.
 inline hid_t createFieldFile(const std::string &path, hid_t fapl)
 {
-  hid_t file = -1;
-  // HDF5 would print its own error stack; the exception below says all the user needs.
-  H5E_BEGIN_TRY { file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl); }
-  H5E_END_TRY;
+  silenceErrorStack();
+  const hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   if (file < 0)
-    throw std::runtime_error("FieldWriter: cannot create HDF5 file '" + path + "'");
+    throw std::runtime_error("cannot create '" + path + "': " + failureCause());
   return file;
 }
 
@@ -62,16 +92,26 @@ public:
   Handle(const Handle &) = delete;
   Handle &operator=(const Handle &) = delete;
   operator hid_t() const { return _id; }
+  /// Closes now and returns HDF5's status: closing a dataset writes it out, so a full disk
+  /// shows here rather than in the destructor, which cannot report it.
+  herr_t close()
+  {
+    const herr_t status = _id >= 0 ? _closer(_id) : 0;
+    _id = -1;
+    return status;
+  }
 
 private:
   hid_t _id;
   herr_t (*_closer)(hid_t);
 };
 
+/// One line for a failed HDF5 call: the file, the cause, and what HDF5 was doing.
 inline void check(herr_t status, const std::string &what, const std::string &path)
 {
   if (status < 0)
-    throw std::runtime_error("FieldWriter: HDF5 failed to " + what + " in '" + path + "'");
+    throw std::runtime_error("cannot write '" + path + "': " + failureCause() +
+                             " (HDF5 failed to " + what + ")");
 }
 
 /// Releases an open file and its transfer list without checks (after a failure), leaving -1.
@@ -87,6 +127,7 @@ inline void releaseFile(hid_t &file, hid_t &dxpl)
 /// makeFileAccessList(comm), and its dataset transfer list, collective with `comm`.
 inline void openFile(const std::string &path, const MPI_Comm *comm, hid_t &file, hid_t &dxpl)
 {
+  silenceErrorStack();
   {
     Handle fapl(makeFileAccessList(comm), H5Pclose);
     file = createFieldFile(path, fapl);
@@ -112,17 +153,23 @@ inline void closeFile(hid_t &file, hid_t &dxpl, const std::string &path)
   if (file < 0)
     return;
   const herr_t flushed = H5Fflush(file, H5F_SCOPE_GLOBAL);
+  const std::string flush_cause = flushed < 0 ? failureCause() : std::string();
   const herr_t closed = H5Fclose(file);
+  const std::string close_cause = closed < 0 ? failureCause() : std::string();
   H5Pclose(dxpl);
   file = dxpl = -1;
-  check(flushed < 0 || closed < 0 ? -1 : 0, "close the file", path);
+  if (flushed < 0 || closed < 0)
+    throw std::runtime_error("cannot write '" + path +
+                             "': " + (flushed < 0 ? flush_cause : close_cause) +
+                             " (HDF5 failed to close the file)");
 }
 
 inline hid_t createGroup(hid_t loc, const std::string &name, const std::string &path)
 {
   const hid_t g = H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   if (g < 0)
-    throw std::runtime_error("FieldWriter: cannot create group '" + name + "' in '" + path + "'");
+    throw std::runtime_error("cannot write '" + path + "': " + failureCause() +
+                             " (HDF5 failed to create group '" + name + "')");
   return g;
 }
 
@@ -130,7 +177,8 @@ inline hid_t openGroup(hid_t loc, const std::string &name, const std::string &pa
 {
   const hid_t g = H5Gopen2(loc, name.c_str(), H5P_DEFAULT);
   if (g < 0)
-    throw std::runtime_error("FieldWriter: cannot open group '" + name + "' in '" + path + "'");
+    throw std::runtime_error("cannot read '" + path + "': " + failureCause() +
+                             " (HDF5 failed to open group '" + name + "')");
   return g;
 }
 
@@ -147,7 +195,9 @@ void writeDataset(hid_t loc, const std::string &name, const std::vector<hsize_t>
                         : H5Dcreate2(loc, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT,
                                      H5P_DEFAULT),
               H5Dclose);
-  const herr_t status = dset < 0 ? -1 : H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, dxpl, data);
+  herr_t status = dset < 0 ? -1 : H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, dxpl, data);
+  if (status >= 0)
+    status = dset.close();
   check(status, "write dataset '" + name + "'", path);
 }
 
@@ -197,6 +247,8 @@ void writeDatasetRows(hid_t loc, const std::string &name, const std::vector<hsiz
     status = H5Sselect_none(mem);
   if (status >= 0)
     status = H5Dwrite(dset, mem_type, mem, space, dxpl, data);
+  if (status >= 0)
+    status = dset.close();
   check(status, "write dataset '" + name + "'", path);
 }
 
@@ -208,7 +260,9 @@ void writeScalarAttribute(hid_t loc, const char *name, T value, const std::strin
   const hid_t file_type = is_real ? H5T_IEEE_F64LE : H5T_STD_I64LE;
   Handle space(H5Screate(H5S_SCALAR), H5Sclose);
   Handle attr(H5Acreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  const herr_t status = attr < 0 ? -1 : H5Awrite(attr, mem_type, &value);
+  herr_t status = attr < 0 ? -1 : H5Awrite(attr, mem_type, &value);
+  if (status >= 0)
+    status = attr.close();
   check(status, std::string("write attribute '") + name + "'", path);
 }
 

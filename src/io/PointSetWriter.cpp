@@ -76,6 +76,12 @@ void PointSetWriter::write(const PointFrame &frame)
   const std::vector<double> origin(3, 0.0), empty(1, _empty_value);
   writeDataset(g, "points", {count, 3}, n == 0 ? origin.data() : frame.points.data(), _dxpl,
                _h5_path);
+  // one vertex cell per point: readers that build cells from the topology's data (meshio,
+  // ParaView's XDMF3 reader) find none without it
+  std::vector<int> vertices(info.count);
+  for (std::size_t p = 0; p < info.count; ++p)
+    vertices[p] = int(p);
+  writeDataset(g, "vertices", {count, 1}, vertices.data(), _dxpl, _h5_path);
   Handle pd(createGroup(g, "point_data", _h5_path), H5Gclose);
   for (const auto &f : frame.scalars)
     writeDataset(pd, f.first, {count}, n == 0 ? empty.data() : f.second.data(), _dxpl, _h5_path);
@@ -100,7 +106,10 @@ void PointSetWriter::writeXdmf() const
     x << "      <Grid Name=\"frame_" << k << "\" GridType=\"Uniform\">\n"
       << "        <Time Value=\"" << time << "\"/>\n"
       << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-      << "\" NodesPerElement=\"1\"/>\n"
+      << "\" NodesPerElement=\"1\">\n"
+      << "          <DataItem Dimensions=\"" << n
+      << " 1\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
+      << "/vertices</DataItem>\n        </Topology>\n"
       << "        <Geometry GeometryType=\"XYZ\">\n"
       << "          <DataItem Dimensions=\"" << n
       << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
@@ -114,16 +123,7 @@ void PointSetWriter::writeXdmf() const
     x << "      </Grid>\n";
   }
   x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
-  const std::string tmp = _xmf_path + ".tmp";
-  std::FILE *fp = std::fopen(tmp.c_str(), "w");
-  if (!fp)
-    throw std::runtime_error("PointSetWriter: cannot create XDMF file '" + tmp + "'");
-  const std::string text = x.str();
-  const bool ok = std::fwrite(text.data(), 1, text.size(), fp) == text.size();
-  if (std::fclose(fp) != 0 || !ok)
-    throw std::runtime_error("PointSetWriter: cannot write XDMF file '" + tmp + "'");
-  if (std::rename(tmp.c_str(), _xmf_path.c_str()) != 0)
-    throw std::runtime_error("PointSetWriter: cannot rename '" + tmp + "' to '" + _xmf_path + "'");
+  replaceFile(_xmf_path, x.str());
 }
 
 } // namespace scpdyn

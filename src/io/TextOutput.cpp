@@ -5,9 +5,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <stdexcept>
 #include <system_error>
+#include <unistd.h>
 
 namespace scpdyn
 {
@@ -54,14 +56,12 @@ CsvWriter::CsvWriter(const std::string &path, std::vector<std::string> columns, 
 {
   if (_columns.empty())
     throw std::invalid_argument("CsvWriter: no columns for '" + path + "'");
-  _file = std::fopen(path.c_str(), "w");
-  if (!_file)
-    throw std::runtime_error("CsvWriter: cannot open '" + path + "': " + std::strerror(errno));
-  std::string header;
+  _fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (_fd < 0)
+    throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno));
   for (std::size_t i = 0; i < _columns.size(); ++i)
-    header += (i ? "," : "") + csvField(_columns[i]);
-  header += "\n";
-  std::fputs(header.c_str(), _file);
+    _buffer += (i ? "," : "") + csvField(_columns[i]);
+  _buffer += "\n";
   flush(); // the header alone already tells a crashed run's reader what was measured
 }
 
@@ -79,44 +79,67 @@ CsvWriter::~CsvWriter()
 
 void CsvWriter::row(const std::vector<double> &values)
 {
-  if (!_file)
+  if (_fd < 0)
     throw std::logic_error("CsvWriter: row() after close() on '" + _path + "'");
   if (values.size() != _columns.size())
     throw std::invalid_argument("CsvWriter: row of " + std::to_string(values.size()) +
                                 " values for " + std::to_string(_columns.size()) + " columns in '" +
                                 _path + "'");
-  std::string line;
-  line.reserve(values.size() * 25);
   for (std::size_t i = 0; i < values.size(); ++i)
   {
     if (i)
-      line += ',';
-    line += formatDouble(values[i]);
+      _buffer += ',';
+    _buffer += formatDouble(values[i]);
   }
-  line += '\n';
-  std::fputs(line.c_str(), _file);
+  _buffer += '\n';
   if (++_pending >= _flush_every)
     flush();
 }
 
 void CsvWriter::flush()
 {
-  if (!_file)
+  if (_fd < 0 || _buffer.empty())
     return;
   _pending = 0;
-  if (std::fflush(_file) != 0 || std::ferror(_file))
-    throw std::runtime_error("CsvWriter: write error on '" + _path + "'");
+  std::size_t done = 0;
+  while (done < _buffer.size())
+  {
+    const ssize_t n = ::write(_fd, _buffer.data() + done, _buffer.size() - done);
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+    {
+      const int cause = n < 0 ? errno : ENOSPC;
+      // whatever part of a row got through is cut off: a reader sees whole rows only
+      if (done > 0 && ::ftruncate(_fd, off_t(_size)) == 0)
+        ::lseek(_fd, off_t(_size), SEEK_SET);
+      _buffer.clear();
+      throw std::runtime_error("cannot write '" + _path + "': " + std::strerror(cause));
+    }
+    done += std::size_t(n);
+  }
+  _size += static_cast<long long>(_buffer.size());
+  _buffer.clear();
 }
 
 void CsvWriter::close()
 {
-  if (!_file)
+  if (_fd < 0)
     return;
-  const bool bad = std::fflush(_file) != 0 || std::ferror(_file);
-  const bool close_failed = std::fclose(_file) != 0;
-  _file = nullptr;
-  if (bad || close_failed)
-    throw std::runtime_error("CsvWriter: write error on '" + _path + "'");
+  std::string error;
+  try
+  {
+    flush();
+  }
+  catch (const std::runtime_error &e)
+  {
+    error = e.what();
+  }
+  if (::close(_fd) != 0 && error.empty())
+    error = "cannot write '" + _path + "': " + std::strerror(errno);
+  _fd = -1;
+  if (!error.empty())
+    throw std::runtime_error(error);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -268,19 +291,37 @@ std::string JsonObject::dump(int indent) const
   return out;
 }
 
-void writeJson(const std::string &path, const JsonObject &object, int indent)
+void replaceFile(const std::string &path, const std::string &text)
 {
   const std::string tmp = path + ".tmp";
   std::FILE *fp = std::fopen(tmp.c_str(), "w");
   if (!fp)
-    throw std::runtime_error("writeJson: cannot open '" + tmp + "': " + std::strerror(errno));
-  const std::string text = object.dump(indent) + "\n";
-  const bool ok = std::fwrite(text.data(), 1, text.size(), fp) == text.size();
-  if (std::fclose(fp) != 0 || !ok)
-    throw std::runtime_error("writeJson: cannot write '" + tmp + "'");
-  if (std::rename(tmp.c_str(), path.c_str()) != 0)
-    throw std::runtime_error("writeJson: cannot rename '" + tmp + "' to '" + path +
-                             "': " + std::strerror(errno));
+    throw std::runtime_error("cannot create '" + tmp + "': " + std::strerror(errno));
+  int cause = 0;
+  errno = 0;
+  if (std::fwrite(text.data(), 1, text.size(), fp) != text.size())
+    cause = errno ? errno : EIO;
+  // stdio writes most of the text at fclose: its error is the one a full disk gives
+  errno = 0;
+  if (std::fclose(fp) != 0 && cause == 0)
+    cause = errno ? errno : EIO;
+  if (cause == 0 && std::rename(tmp.c_str(), path.c_str()) != 0)
+  {
+    const int rename_cause = errno;
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot rename '" + tmp + "' to '" + path +
+                             "': " + std::strerror(rename_cause));
+  }
+  if (cause != 0)
+  {
+    std::remove(tmp.c_str()); // a half-written temporary helps no reader
+    throw std::runtime_error("cannot write '" + tmp + "': " + std::strerror(cause));
+  }
+}
+
+void writeJson(const std::string &path, const JsonObject &object, int indent)
+{
+  replaceFile(path, object.dump(indent) + "\n");
 }
 
 } // namespace scpdyn

@@ -22,10 +22,17 @@ void ensureDirectory(const std::string &path);
 /// \brief A double as "%.17g" (round-trips bit for bit through strtod).
 std::string formatDouble(double value);
 
+/// \brief Replaces `path` with `text` through `path.tmp` and a rename, so readers only ever
+/// see a complete file. On failure the temporary is removed and std::runtime_error names the
+/// file and the cause (strerror: "No space left on device", ...).
+void replaceFile(const std::string &path, const std::string &text);
+
 /// \brief CSV file: one header line, then one line per row() with "%.17g" numbers.
 ///
 /// Rows are flushed to the OS every `flush_every` rows and at flush()/close()/destruction,
-/// so a run that dies loses at most flush_every-1 rows.
+/// so a run that dies loses at most flush_every-1 rows. The file only ever ends with whole
+/// rows: a write that fails part-way (a full disk) is cut back to the last whole row, and the
+/// error names the file and the cause.
 class CsvWriter
 {
 public:
@@ -39,7 +46,8 @@ public:
 
   /// \brief Appends one row; throws std::invalid_argument if values.size() != columns.
   void row(const std::vector<double> &values);
-  /// \brief Pushes buffered rows to the OS; throws std::runtime_error on a write error.
+  /// \brief Pushes buffered rows to the OS; throws std::runtime_error naming the file and the
+  /// cause on a write error (the rows not written are dropped, the file keeps whole rows).
   void flush();
   /// \brief Flushes and closes; idempotent. row() afterwards throws std::logic_error.
   void close();
@@ -52,7 +60,9 @@ private:
   std::vector<std::string> _columns;
   int _flush_every;
   int _pending = 0;
-  std::FILE *_file = nullptr;
+  int _fd = -1;        ///< the open file, -1 when closed
+  std::string _buffer; ///< rows not yet written
+  long long _size = 0; ///< bytes of whole rows in the file
 };
 
 /// \brief Escapes a string for use inside JSON double quotes (", \, control characters);

@@ -8,7 +8,9 @@
 #include <algorithm>
 #include <cmath>
 #include <dirent.h>
+#include <cstdio>
 #include <fstream>
+#include <sstream>
 
 using namespace scpdyn;
 
@@ -153,4 +155,96 @@ TEST(Cli, GatherScatterIsBitwiseThreadIndependent)
   auto g1 = test::readCsv(o1 + "/gauges.csv"), g2 = test::readCsv(o2 + "/gauges.csv");
   for (const auto &kv : g1)
     EXPECT_EQ(kv.second, g2[kv.first]) << kv.first;
+}
+
+TEST(Cli, DashOWithoutADirectorySaysSo)
+{
+  std::string err;
+  const std::string deck =
+      test::writeWorkFile("cli_block.yaml", "dimension: 2\ntime: {end: 1.0e-5}\n"
+                                            "materials: [{name: rock, density: 2600, "
+                                            "youngs_modulus: 5.0e10, poisson_ratio: 0.25}]\n"
+                                            "parts: [{name: block, material: rock, mesh: "
+                                            "{elements: [4, 2], size: [0.04, 0.02]}}]\n");
+  EXPECT_EQ(test::runBinary(deck + " -o", &err), 2);
+  EXPECT_NE(err.find("-o needs a directory"), std::string::npos) << err;
+  EXPECT_EQ(err.find("unknown option"), std::string::npos) << err;
+}
+
+TEST(Cli, PlainRunBindsThreadsWithoutKokkosWarning)
+{
+  // neither OMP_PROC_BIND nor OMP_PLACES set: Kokkos warned (on stdout) on every run
+  const std::string deck = test::writeWorkFile(
+      "cli_bind.yaml", "dimension: 2\ntime: {end: 1.0e-5}\n"
+                       "materials: [{name: rock, density: 2600, youngs_modulus: 5.0e10, "
+                       "poisson_ratio: 0.25}]\n"
+                       "parts: [{name: block, material: rock, mesh: {elements: [4, 2], "
+                       "size: [0.04, 0.02]}}]\n");
+  const std::string out = std::string(SCPDYN_TEST_WORKDIR) + "/cli_bind";
+  const std::string log = out + ".log";
+  const std::string cmd = "env -u OMP_PROC_BIND -u OMP_PLACES OMP_NUM_THREADS=1 " +
+                          std::string(SCPDYN_BINARY) + " " + deck + " -o " + out + " > " + log +
+                          " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::readText(log);
+  EXPECT_EQ(test::readText(log).find("OMP_PROC_BIND"), std::string::npos) << test::readText(log);
+}
+
+TEST(Cli, ProgressEndsWithTimeMaxCycles)
+{
+  // time.end 1 s is 1e6 cycles away; max_cycles 40 ends the run first, and the progress line
+  // (every cycle: progress_interval 1 ns) must count towards that
+  const std::string deck = test::writeWorkFile(
+      "cli_eta.yaml", "dimension: 2\ntime: {end: 1.0, max_cycles: 40}\n"
+                      "output: {progress_interval: 1.0e-9, history_interval: 1.0e-3}\n"
+                      "materials: [{name: rock, density: 2600, youngs_modulus: 5.0e10, "
+                      "poisson_ratio: 0.25}]\n"
+                      "parts: [{name: block, material: rock, mesh: {elements: [4, 2], "
+                      "size: [0.04, 0.02]}}]\n");
+  std::string err;
+  ASSERT_EQ(test::runBinary(deck + " -o " + std::string(SCPDYN_TEST_WORKDIR) + "/cli_eta", &err,
+                            "OMP_NUM_THREADS=1 OMP_PROC_BIND=false"),
+            0)
+      << err;
+  std::istringstream lines(err);
+  int seen = 0;
+  for (std::string line; std::getline(lines, line);)
+  {
+    long cycle = 0;
+    double t = 0, dt = 0, percent = 0;
+    if (std::sscanf(line.c_str(), "scpdyn: cycle %ld t = %lf s dt = %lf s %lf%%", &cycle, &t, &dt,
+                    &percent) != 4)
+      continue;
+    ++seen;
+    // the line prints one decimal: within 0.05 % of cycle / max_cycles
+    EXPECT_NEAR(percent, 100.0 * double(cycle) / 40, 0.051) << line;
+  }
+  EXPECT_GE(seen, 20) << err;
+}
+
+TEST(Cli, RunScriptHelpAndTheDecksOutputDirectory)
+{
+  const std::string work = std::string(SCPDYN_TEST_WORKDIR) + "/run_script";
+  const std::string script = std::string(SCPDYN_SOURCE_DIR) + "/scripts/run.sh";
+  std::system(("rm -rf " + work + " && mkdir -p " + work).c_str());
+  const std::string log = work + "/log.txt";
+  // --help is the script's usage, not a deck named "--help"
+  ASSERT_EQ(std::system(("bash " + script + " --help > " + log + " 2>&1").c_str()), 0)
+      << test::readText(log);
+  EXPECT_NE(test::readText(log).find("scripts/run.sh [DECK [scpdyn options]]"), std::string::npos)
+      << test::readText(log);
+  // without -o the deck's output.directory holds the results (relative to the working directory)
+  test::writeWorkFile("run_script/deck_dir.yaml",
+                      "dimension: 2\ntime: {end: 1.0e-5}\noutput: {directory: results/mine}\n"
+                      "materials: [{name: rock, density: 2600, youngs_modulus: 5.0e10, "
+                      "poisson_ratio: 0.25}]\n"
+                      "parts: [{name: block, material: rock, mesh: {elements: [4, 2], "
+                      "size: [0.04, 0.02]}}]\n");
+  const std::string cmd = "cd " + work +
+                          " && OMP_NUM_THREADS=1 OMP_PROC_BIND=false SCPDYN_BIN=" + SCPDYN_BINARY +
+                          " bash " + script + " deck_dir.yaml > " + log + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << test::readText(log);
+  EXPECT_TRUE(std::ifstream(work + "/results/mine/summary.json").good()) << test::readText(log);
+  EXPECT_FALSE(std::ifstream(work + "/out/deck_dir/summary.json").good());
+  EXPECT_NE(test::readText(log).find("results: results/mine"), std::string::npos)
+      << test::readText(log);
 }

@@ -22,7 +22,7 @@ const std::string kWork = std::string(SCPDYN_TEST_WORKDIR) + "/input";
 // A 3D deck that sets every key of the schema to a non-default value.
 const char *kFullDeck = R"(title: full test deck
 dimension: 3
-time: {end: 1.0e-3, courant: 0.8, dt_max: 1.0e-6, max_cycles: 5000}
+time: {end: 1.0e-3, courant: 0.8, dt_max: 1.0e-6, max_cycles: 5000, max_estimated_cycles: 2.0e7}
 numerics:
   hourglass: {type: viscous, coefficient: 0.1}
   bulk_viscosity: {linear: 0.1, quadratic: 1.2}
@@ -30,7 +30,7 @@ numerics:
   node_update: separate
 gravity: {value: [0, 0, -9.81], function: ramp}
 output: {directory: results/full, field_interval: 1.0e-4, history_interval: 1.0e-6,
-         progress_interval: 5}
+         progress_interval: 5, max_output_bytes: 1.0e8}
 functions:
   - name: ramp
     points: [[0, 0], [1.0e-4, 1], [1, 1]]
@@ -128,6 +128,7 @@ void expectSameDeck(const Deck &a, const Deck &b)
   EXPECT_EQ(a.courant, b.courant);
   EXPECT_EQ(a.dt_max, b.dt_max);
   EXPECT_EQ(a.max_cycles, b.max_cycles);
+  EXPECT_EQ(a.max_estimated_cycles, b.max_estimated_cycles);
   EXPECT_EQ(a.hourglass_coefficient, b.hourglass_coefficient);
   EXPECT_EQ(a.hourglass_type, b.hourglass_type);
   EXPECT_EQ(a.bulk_viscosity_linear, b.bulk_viscosity_linear);
@@ -139,6 +140,7 @@ void expectSameDeck(const Deck &a, const Deck &b)
   EXPECT_EQ(a.field_interval, b.field_interval);
   EXPECT_EQ(a.history_interval, b.history_interval);
   EXPECT_EQ(a.progress_interval, b.progress_interval);
+  EXPECT_EQ(a.max_output_bytes, b.max_output_bytes);
   ASSERT_EQ(a.materials.size(), b.materials.size());
   for (std::size_t i = 0; i < a.materials.size(); ++i)
   {
@@ -229,6 +231,7 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(d.courant, 0.8);
   EXPECT_EQ(d.dt_max, 1.0e-6);
   EXPECT_EQ(d.max_cycles, 5000);
+  EXPECT_EQ(d.max_estimated_cycles, 2.0e7);
   EXPECT_EQ(d.hourglass_type, HourglassForm::Viscous);
   EXPECT_EQ(d.hourglass_coefficient, 0.1);
   EXPECT_EQ(d.bulk_viscosity_linear, 0.1);
@@ -239,6 +242,7 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(d.output_dir, "results/full");
   EXPECT_EQ(d.field_interval, 1.0e-4);
   EXPECT_EQ(d.history_interval, 1.0e-6);
+  EXPECT_EQ(d.max_output_bytes, 1.0e8);
   EXPECT_EQ(d.progress_interval, 5.0);
 
   ASSERT_EQ(d.functions.size(), 1u);
@@ -319,6 +323,8 @@ TEST(DeckParser, MinimalDeckGetsDocumentedDefaults)
   EXPECT_EQ(d.courant, 0.5);
   EXPECT_EQ(d.dt_max, 1e30);
   EXPECT_EQ(d.max_cycles, -1);
+  EXPECT_EQ(d.max_estimated_cycles, 1e9);
+  EXPECT_EQ(d.max_output_bytes, 50e9);
   EXPECT_EQ(d.hourglass_type, HourglassForm::Stiffness);
   EXPECT_EQ(d.hourglass_coefficient, 0.05);
   EXPECT_EQ(d.bulk_viscosity_linear, 0.06);
@@ -380,7 +386,7 @@ TEST(DeckParser, TypoSuggestsClosestKey)
                  "'courant'?");
   // far from every key: list them instead of guessing
   EXPECT_NE(errorOf("dimension: 2\ntime: {end: 1, speed: 0.5}\n")
-                .find("(expected one of: end, courant, dt_max, max_cycles)"),
+                .find("(expected one of: end, courant, dt_max, max_cycles, max_estimated_cycles)"),
             std::string::npos);
 }
 

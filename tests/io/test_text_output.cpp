@@ -10,8 +10,10 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <csignal>
 #include <random>
 #include <sstream>
+#include <sys/resource.h>
 
 namespace
 {
@@ -130,6 +132,87 @@ TEST(CsvWriter, FlushesEveryNRowsAndRejectsBadRows)
   {
     EXPECT_NE(std::string(e.what()).find("/nonexistent_dir_io/x.csv"), std::string::npos);
   }
+}
+
+TEST(CsvWriter, AFullDeviceGivesTheFileAndTheCause)
+{
+  // /dev/full: every write fails with ENOSPC, as on a full disk
+  try
+  {
+    CsvWriter csv("/dev/full", {"t", "e"});
+    csv.row({1.0, 2.0});
+    csv.close();
+    FAIL() << "no error on /dev/full";
+  }
+  catch (const std::runtime_error &e)
+  {
+    EXPECT_EQ(std::string(e.what()), "cannot write '/dev/full': " + std::string(strerror(ENOSPC)));
+  }
+}
+
+TEST(CsvWriter, AWriteCutShortLeavesWholeRows)
+{
+  // a file-size limit makes the write that crosses it stop part-way (then fail with EFBIG),
+  // as a disk that fills up in the middle of a row does
+  const std::string path = workPath("cut.csv");
+  std::remove(path.c_str());
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit small = saved;
+  small.rlim_cur = 1000; // bytes; rows are ~60, flushed 4 at a time: 1000 falls inside a row
+  auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string error;
+  {
+    CsvWriter csv(path, {"t", "a", "b"}, 4);
+    try
+    {
+      for (int r = 0; r < 1000; ++r)
+        csv.row({1.0 / 3 + r, 2.0 / 3, -1e-300 / 7});
+      csv.close();
+    }
+    catch (const std::runtime_error &e)
+    {
+      error = e.what();
+    }
+  }
+  setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(error, "cannot write '" + path + "': " + std::string(strerror(EFBIG)));
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+  const auto lines = readLines(path);
+  ASSERT_GT(lines.size(), 2u);
+  for (const auto &l : lines)
+    EXPECT_EQ(split(l).size(), 3u) << l;
+}
+
+TEST(ReplaceFile, AFailedWriteKeepsTheOldFileAndNoTemporary)
+{
+  const std::string path = workPath("replaced.xmf");
+  scpdyn::replaceFile(path, "old\n");
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit small = saved;
+  small.rlim_cur = 1000;
+  auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  std::string error;
+  try
+  {
+    scpdyn::replaceFile(path, std::string(5000, 'x'));
+  }
+  catch (const std::runtime_error &e)
+  {
+    error = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(error, "cannot write '" + path + ".tmp': " + std::string(strerror(EFBIG)));
+  EXPECT_FALSE(std::ifstream(path + ".tmp").good()) << "the half-written temporary is removed";
+  EXPECT_EQ(readLines(path), std::vector<std::string>{"old"});
 }
 
 TEST(Json, EscapeAndDump)
