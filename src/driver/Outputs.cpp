@@ -579,6 +579,10 @@ void Outputs::finish(const std::string &error)
       .add("ns_per_element_cycle", element_cycles > 0 ? 1e9 * cycle_time / element_cycles : 0.0);
   if (ranks > 1)
     s.add("decomposition", decomposition);
+  JsonObject parts; // the values of the `part` field of fields.h5, by name
+  for (size_t p = 0; p < _solver.mesh().parts.size(); ++p)
+    parts.add(std::to_string(p), _solver.mesh().parts[p].name);
+  s.add("parts", parts);
   writeJson(_dir + "/summary.json", s);
 }
 

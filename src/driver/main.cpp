@@ -106,14 +106,16 @@ int main(int argc, char **argv)
         if (out_dir.empty())
           out_dir = deck.output_dir.empty() ? "out/" + deckStem(deck_path) : deck.output_dir;
         scpdyn::Solver solver(deck);
+        const int threads = int(scpdyn::ExecSpace().concurrency());
         if (root && solver.numRanks() == 1)
-          std::fprintf(stderr, "scpdyn: %s: %d nodes, %d elements, %d threads -> %s\n",
-                       deck_path.c_str(), solver.nodes().count, solver.elements().count,
-                       int(scpdyn::ExecSpace().concurrency()), out_dir.c_str());
+          std::fprintf(stderr, "scpdyn: %s: %d nodes, %d elements, %d thread%s -> %s\n",
+                       deck_path.c_str(), solver.nodes().count, solver.elements().count, threads,
+                       threads == 1 ? "" : "s", out_dir.c_str());
         else if (root)
-          std::fprintf(stderr, "scpdyn: %s: %ld nodes, %ld elements, %d ranks x %d threads -> %s\n",
+          std::fprintf(stderr,
+                       "scpdyn: %s: %ld nodes, %ld elements, %d ranks x %d thread%s -> %s\n",
                        deck_path.c_str(), solver.globalNodeCount(), solver.globalElementCount(),
-                       solver.numRanks(), int(scpdyn::ExecSpace().concurrency()), out_dir.c_str());
+                       solver.numRanks(), threads, threads == 1 ? "" : "s", out_dir.c_str());
         const long cycles = solver.run(out_dir);
         if (root)
           std::printf("scpdyn: done, %ld cycles to t = %.6e s; results in %s\n", cycles,

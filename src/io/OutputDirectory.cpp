@@ -77,8 +77,8 @@ OutputDirectoryLock::OutputDirectoryLock(const std::string &dir) : _path(dir + "
       if (written != ssize_t(_text.size()) || !closed)
       {
         ::unlink(_path.c_str());
-        throw std::runtime_error("cannot write the lock file '" + _path + "': " +
-                                 std::strerror(written < 0 ? write_errno : ENOSPC));
+        throw std::runtime_error("cannot write the lock file '" + _path +
+                                 "': " + std::strerror(written < 0 ? write_errno : ENOSPC));
       }
       return;
     }

@@ -248,3 +248,22 @@ TEST(Cli, RunScriptHelpAndTheDecksOutputDirectory)
   EXPECT_NE(test::readText(log).find("results: results/mine"), std::string::npos)
       << test::readText(log);
 }
+
+// summary.json names the values of the `part` field (a brick wall's sub-parts), and the start
+// line says "1 thread", not "1 threads".
+TEST(Cli, SummaryNamesThePartsAndTheStartLineItsThreads)
+{
+  const std::string deck = test::writeWorkFile(
+      "part_names.yaml", "dimension: 2\ntime: {end: 1.0e-6}\n"
+                         "materials: [{name: rock, density: 2600, youngs_modulus: 5.0e10, "
+                         "poisson_ratio: 0.25}]\n"
+                         "parts: [{name: wall, material: rock, mesh: {type: brick_wall, "
+                         "brick_size: [0.2, 0.1], count: [2, 2]}}]\n");
+  const std::string out = std::string(SCPDYN_TEST_WORKDIR) + "/part_names";
+  std::string err;
+  ASSERT_EQ(test::runBinary(deck + " -o " + out, &err, "OMP_NUM_THREADS=1"), 0) << err;
+  const std::string summary = test::readText(out + "/summary.json");
+  EXPECT_NE(summary.find("\"0\": \"wall.0.0\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"wall.1.2\""), std::string::npos) << summary; // staggered course
+  EXPECT_NE(err.find(" 1 thread -> "), std::string::npos) << err;
+}

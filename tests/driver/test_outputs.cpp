@@ -74,7 +74,8 @@ std::string outDir(const std::string &name)
 /// the binary under `timeout`: a run that does not end is a failure, not a hung test
 int run(const std::string &args, std::string *err, const std::string &env = "")
 {
-  return test::runBinary(args, err, "OMP_NUM_THREADS=1 OMP_PROC_BIND=false " + env + " timeout 120");
+  return test::runBinary(args, err,
+                         "OMP_NUM_THREADS=1 OMP_PROC_BIND=false " + env + " timeout 120");
 }
 
 int count(const std::string &text, const std::string &what)
@@ -140,12 +141,12 @@ TEST(Outputs, RunsThatWouldNeverEndAreRefusedBeforeTheFirstCycle)
   // courant 1e-300 and E = 1e308 Pa give time steps of ~1e-306 s and ~1e-155 s: some 1e300
   // and 1e150 cycles, which ran (and wrote history) until killed
   const std::string base = kBlockDeck;
-  const std::string courant = std::regex_replace(base, std::regex("end: 1.0e-5"),
-                                                 "end: 1.0e-5, courant: 1.0e-300");
+  const std::string courant =
+      std::regex_replace(base, std::regex("end: 1.0e-5"), "end: 1.0e-5, courant: 1.0e-300");
   const std::string stiff =
       std::regex_replace(base, std::regex("youngs_modulus: 5.0e10"), "youngs_modulus: 1.0e308");
-  for (const auto &[name, text] : {std::pair<std::string, std::string>{"courant", courant},
-                                   {"stiff", stiff}})
+  for (const auto &[name, text] :
+       {std::pair<std::string, std::string>{"courant", courant}, {"stiff", stiff}})
   {
     SCOPED_TRACE(name);
     const std::string dir = outDir("never_ends_" + name);
@@ -157,8 +158,8 @@ TEST(Outputs, RunsThatWouldNeverEndAreRefusedBeforeTheFirstCycle)
   // time.max_cycles bounds the estimate: the stiff block then runs its 5 cycles
   const std::string dir = outDir("never_ends_capped");
   std::string err;
-  const std::string capped = std::regex_replace(stiff, std::regex("end: 1.0e-5"),
-                                                "end: 1.0e-5, max_cycles: 5");
+  const std::string capped =
+      std::regex_replace(stiff, std::regex("end: 1.0e-5"), "end: 1.0e-5, max_cycles: 5");
   EXPECT_EQ(run(deckFile("capped.yaml", capped) + " -o " + dir, &err), 0) << err;
   EXPECT_EQ(summaryCycles(dir), 5);
   // and the limit is the deck's: courant 0.01 takes 481 cycles
@@ -169,8 +170,8 @@ TEST(Outputs, RunsThatWouldNeverEndAreRefusedBeforeTheFirstCycle)
   EXPECT_NE(err.find("time.max_estimated_cycles: the run needs about 481 cycles"),
             std::string::npos)
       << err;
-  const std::string raised =
-      std::regex_replace(slow, std::regex("max_estimated_cycles: 100"), "max_estimated_cycles: 1000");
+  const std::string raised = std::regex_replace(slow, std::regex("max_estimated_cycles: 100"),
+                                                "max_estimated_cycles: 1000");
   EXPECT_EQ(run(deckFile("limit_1000.yaml", raised) + " -o " + outDir("never_ends_1000"), &err), 0)
       << err;
 }
@@ -304,9 +305,9 @@ TEST(Outputs, ContactsXmfIsReadByMeshio)
       << "        assert sorted(c for c in cells[0].data[:, 0]) == list(range(n)), k\n"
       << "        assert all(len(v) == n for v in pd.values()) and 'area' in pd, k\n"
       << "    assert n == cps, (n, cps)\n";
-  EXPECT_EQ(std::system(("/usr/bin/python3 " + script + " " + dir + " " + std::to_string(cps))
-                            .c_str()),
-            0);
+  EXPECT_EQ(
+      std::system(("/usr/bin/python3 " + script + " " + dir + " " + std::to_string(cps)).c_str()),
+      0);
 }
 
 TEST(Outputs, ContactsXmfIsReadByParaView)
@@ -368,8 +369,8 @@ parts:
     std::string dir;
     ~Unmount() { std::system(("umount " + dir).c_str()); }
   } unmount{mnt};
-  for (const auto &[deck, file] : {std::pair<std::string, std::string>{fields, "fields.h5'"},
-                                   {rows, ".csv'"}})
+  for (const auto &[deck, file] :
+       {std::pair<std::string, std::string>{fields, "fields.h5'"}, {rows, ".csv'"}})
   {
     SCOPED_TRACE(deck);
     const std::string dir = mnt + "/run";
