@@ -61,14 +61,10 @@ KOKKOS_INLINE_FUNCTION void rowVelocity(const ContactFaceData &F, const CommonPl
                                         const TieWeights &tw, Index c, Index p, int side,
                                         const VectorView &v, Real V[3])
 {
-  const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
-  V[0] = V[1] = V[2] = 0;
-  for (int a = 0; a < F.num_nodes(f); ++a)
-  {
-    const Real w = side == 0 ? tw.w1(c, a) : tw.w2(c, a);
-    for (int d = 0; d < 3; ++d)
-      V[d] += w * v(F.nodes(f, a), d);
-  }
+  if (side == 0)
+    faceVelocityWith(F, cp.face1(p), tw.w1, c, v, V);
+  else
+    faceVelocityWith(F, cp.face2(p), tw.w2, c, v, V);
 }
 
 /// The force Fv of tie row c of CP p on its own faces' nodes: -w1 Fv on face 1, +w2 Fv on

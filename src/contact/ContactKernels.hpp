@@ -27,19 +27,26 @@ KOKKOS_INLINE_FUNCTION bool isConstraint(ContactOption o)
   return o == ContactOption::SlideLine || o == ContactOption::Sticky || o == ContactOption::Sleepy;
 }
 
+/// Velocity of face f weighted by row `row` of `w` (a View (row, face node)).
+template <class Weights>
+KOKKOS_INLINE_FUNCTION void faceVelocityWith(const ContactFaceData &F, Index f, const Weights &w,
+                                             Index row, const VectorView &v, Real V[3])
+{
+  V[0] = V[1] = V[2] = 0;
+  for (int a = 0; a < F.num_nodes(f); ++a)
+    for (int d = 0; d < 3; ++d)
+      V[d] += w(row, a) * v(F.nodes(f, a), d);
+}
+
 /// Velocity of face `side` (0: face 1, 1: face 2) of CP p: the nodal velocities weighted like
 /// the CP force (17)-(18), so the power of the CP force is exactly -F.(V1 - V2).
 KOKKOS_INLINE_FUNCTION void weightedVelocity(const ContactFaceData &F, const CommonPlaneData &cp,
                                              Index p, int side, const VectorView &v, Real V[3])
 {
-  const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
-  V[0] = V[1] = V[2] = 0;
-  for (int a = 0; a < F.num_nodes(f); ++a)
-  {
-    const Real w = side == 0 ? cp.w1(p, a) : cp.w2(p, a);
-    for (int d = 0; d < 3; ++d)
-      V[d] += w * v(F.nodes(f, a), d);
-  }
+  if (side == 0)
+    faceVelocityWith(F, cp.face1(p), cp.w1, p, v, V);
+  else
+    faceVelocityWith(F, cp.face2(p), cp.w2, p, v, V);
 }
 
 /// V1, V2 of CP p by the rule of its parameters.
