@@ -135,9 +135,17 @@ void Solver::stepElementSolvers()
     if (!r.finite)
       os << "non-finite element state at cycle " << _cycle << ", time " << _time;
     else
+    {
       os << "element " << globalElement(meshElementOfDevice(r.inverted)) << " inverted at cycle "
-         << _cycle << ", time " << _time << " s (dt " << _dt
-         << " s): reduce time.courant or check the loading";
+         << _cycle << ", time " << _time << " s (dt " << _dt << " s): ";
+      const std::string surface = contactSurfaceOf(meshElementOfDevice(r.inverted));
+      if (!surface.empty())
+        os << "it has a face on " << surface
+           << ": check that joint (aperture, moduli, C_safe) and its time step, or reduce "
+              "time.courant";
+      else
+        os << "reduce time.courant or check the loading";
+    }
     error = os.str();
   }
   collectiveCheck(error); // every rank stops before the shared-node exchange
@@ -187,6 +195,23 @@ void Solver::stepUpdateNodes()
     os << "non-finite nodal velocities at cycle " << _cycle << ", time " << _time;
     throw SimulationError(os.str());
   }
+}
+
+std::string Solver::contactSurfaceOf(Index mesh_element) const
+{
+  if (!_m.contact)
+    return "";
+  const std::vector<ContactFaceInfo> &info = _m.contact->faceInfo();
+  const size_t own = size_t(_m.contact->numOwnFaces()); // ghosts are other ranks' elements
+  for (size_t f = 0; f < own && f < info.size(); ++f)
+    if (info[f].mesh_element == mesh_element)
+    {
+      auto surface = Kokkos::create_mirror_view_and_copy(
+          HostSpace(), Kokkos::subview(_m.contact->faces().surface, std::make_pair(f, f + 1)));
+      const SurfaceSpec &spec = _m.deck.contact.surfaces[size_t(surface(0))];
+      return "contact surface '" + spec.name + "' (option " + spec.option + ")";
+    }
+  return "";
 }
 
 void Solver::checkEarlyNodes() const

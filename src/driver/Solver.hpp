@@ -128,6 +128,8 @@ private:
   void stepExchangeLoadPartials(); // 10b
   void collectiveCheck(const std::string &local_error) const;
   void checkEarlyNodes() const;
+  /// \brief "contact surface 'j' (option explicit)" if the element has a contact face, else "".
+  std::string contactSurfaceOf(Index mesh_element) const;
   TimeStepControls timeStepControls() const { return {_m.deck.courant, _m.deck.dt_max}; }
   Index meshElementOfDevice(Index device) const { return _m.meshElementOfDevice(device); }
 

@@ -432,3 +432,24 @@ TEST(ContactRegression, ExplicitLimitHoldsForPairsASearchFinds)
   EXPECT_LT(worst, 1.5);
   RecordProperty("max_u_over_a", sci(worst));
 }
+
+// With the limit switched off (C_safe: off) the same deck inverts an element in cycle 1; the
+// message then names the contact surface at that element's face, not only time.courant.
+TEST(ContactRegression, InvertedElementAtAJointNamesTheJoint)
+{
+  const std::string yaml = replaced(explicitApproachDeck(0.0), "phi0: 38, phi1: 38}",
+                                    "phi0: 38, phi1: 38, C_safe: off}");
+  Solver s(deckFromText(yaml, "explicit_limit_off"));
+  std::string message;
+  try
+  {
+    while (s.time() < 2.0e-6)
+      s.cycle();
+  }
+  catch (const SimulationError &e)
+  {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("inverted"), std::string::npos) << message;
+  EXPECT_NE(message.find("contact surface 'j' (option explicit)"), std::string::npos) << message;
+}
