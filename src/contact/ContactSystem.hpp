@@ -62,7 +62,7 @@ public:
   void sortIntoBins(const NodeFields &nodes, Real dt, long cycle);
   /// \brief Step 9: detection on search cycles, then every CP's force (sub-steps A-E), scattered
   /// atomically to a contact-force field and written to nodes.f_contact (its contact nodes;
-  /// the other entries are left alone, at zero unless step 10b wrote them). Returns a failure naming a
+  /// the other entries are left alone, at zero unless step 9b wrote them). Returns a failure naming a
   /// CP when the contact diverged (contact/ContactChecks.hpp: a non-finite force or history, a
   /// joint closure past 2 apertures, energy created); the forces are then not applied and the
   /// CP histories are restored.

@@ -498,7 +498,7 @@ void Outputs::finish(const std::string &error)
   JsonObject decomposition;
   if (const DomainDecomposition *dd = _solver.decomposition())
   {
-    // per rank: subdomain size and bytes sent per cycle (shared-node sums of steps 7 and 10b
+    // per rank: subdomain size and bytes sent per cycle (shared-node sums of steps 7, 9b and 10
     // and of the constraint solves, ghost copies of step 8, ghost rebuilds of step 4)
     const double cycles = std::max(1.0, double(_solver.cycles()));
     const double halo = double(dd->halo->bytesSent() - dd->halo_bytes_setup);

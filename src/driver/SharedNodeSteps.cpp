@@ -1,4 +1,4 @@
-// Steps 7 and 10b of a decomposed run (docs/theory.md 2.2): the forces of the nodes shared
+// Steps 7, 9b and the face loads' sum (step 10) of a decomposed run (docs/theory.md 2.2): the forces of the nodes shared
 // between ranks summed over their copies; and the collective error check that keeps the ranks
 // in step when one of them fails.
 #include "driver/Solver.hpp"
@@ -27,24 +27,27 @@ void Solver::stepExchangeSharedNodeForces()
   _m.dd->halo->sum(_m.nodes.f_int);
 }
 
-void Solver::stepExchangeLoadPartials()
+void Solver::stepExchangeContactPartials()
 {
-  if (!_m.dd)
+  if (!_m.dd || !_m.contact)
     return;
-  ScopedStep t(_timers, "10b_shared_node_loads");
-  // contact: the partials come from the contact's own field, which holds zero at a node this
-  // rank's contact does not touch (f_contact there holds the last cycle's sum)
-  if (_m.contact)
-    sumSharedPartials(*_m.dd->halo, _m.dd->shared_nodes, _m.contact->nodalForces(),
-                      _m.dd->f_contact, _m.nodes.f_contact);
-  if (!_m.bc.pressure_value.empty()) // the face loads again, into their own array
-  {
-    Kokkos::deep_copy(_m.dd->f_load, 0.0);
-    NodeFields into = _m.nodes;
-    into.f_ext = _m.dd->f_load;
-    applyFaceLoads(_m.bc, into, _dt, _m.deck.dimension, _m.deck.geometry);
-    sumSharedLoads(*_m.dd->halo, _m.dd->shared_nodes, _m.dd->f_load, _m.nodes, _gravity.data());
-  }
+  ScopedStep t(_timers, "09b_shared_contact_forces");
+  // the partials come from the contact's own field, which holds zero at a node this rank's
+  // contact does not touch (f_contact there holds the last cycle's sum)
+  sumSharedPartials(*_m.dd->halo, _m.dd->shared_nodes, _m.contact->nodalForces(), _m.dd->f_contact,
+                    _m.nodes.f_contact);
+}
+
+void Solver::sumSharedFaceLoads()
+{
+  if (!_m.dd || _m.bc.pressure_value.empty())
+    return;
+  // the face loads again, into their own array, summed over the copies of each shared node
+  Kokkos::deep_copy(_m.dd->f_load, 0.0);
+  NodeFields into = _m.nodes;
+  into.f_ext = _m.dd->f_load;
+  applyFaceLoads(_m.bc, into, _dt, _m.deck.dimension, _m.deck.geometry);
+  sumSharedLoads(*_m.dd->halo, _m.dd->shared_nodes, _m.dd->f_load, _m.nodes, _gravity.data());
 }
 
 } // namespace scpdyn

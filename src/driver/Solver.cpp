@@ -71,18 +71,19 @@ void Solver::cycle()
   stepElementSolvers();           // 6: half-step kinematics, materials, internal forces
                                   //    (and step 12 of the nodes 7-11 leave alone: NodeSweep)
   stepExchangeSharedNodeForces(); // 7: sum internal forces on shared nodes
-  stepExchangeGhostFaceData();    // 8: ghost faces get x, v, face masses
+  stepFaceBoundaryConditions();   // 10: pressure on faces, and on shared nodes their sum,
+  stepNodeBoundaryConditions();   // 11: nodal forces (velocities are imposed in 12): both
+                                  //     before 9, whose velocity correction sees every force
+  stepExchangeGhostFaceData();    // 8: ghost faces get x, v, the forces, face masses
   stepContactForces();            // 9: common planes: detection, geometry, forces
-  stepFaceBoundaryConditions();   // 10: pressure on faces
-  stepExchangeLoadPartials();     // 10b: sum contact and pressure forces on shared nodes
-  stepNodeBoundaryConditions();   // 11: nodal forces (velocities are imposed in 12)
+  stepExchangeContactPartials();  // 9b: sum contact forces on shared nodes
   stepUpdateNodes();              // 12: v, x; next stable time step
   _time += _dt;                   // 13: back to 3 (output by the caller)
   ++_cycle;
   _cycle_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Steps 4 and 8 (ghost contact faces) are in src/driver/ContactGhosts.cpp, 7 and 10b in
+// Steps 4 and 8 (ghost contact faces) are in src/driver/ContactGhosts.cpp, 7, 9b and the load sum of 10 in
 // src/driver/SharedNodeSteps.cpp; set-up in src/model/.
 
 void Solver::stepSortIntoBins()
@@ -159,6 +160,7 @@ void Solver::stepFaceBoundaryConditions()
   ScopedStep t(_timers, "10_face_bcs");
   updateLoadValues(_m.bc, _time + 0.5 * _dt);
   applyFaceLoads(_m.bc, _m.nodes, _dt, _m.deck.dimension, _m.deck.geometry);
+  sumSharedFaceLoads();
 }
 
 void Solver::stepNodeBoundaryConditions()

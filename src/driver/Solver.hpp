@@ -125,7 +125,8 @@ private:
   void jointGaugeValues(std::vector<Real> &out) const;
   void ensureNodeCapacity(Index count);
   void restrictGhosts();
-  void stepExchangeLoadPartials(); // 10b
+  void stepExchangeContactPartials(); // 9b
+  void sumSharedFaceLoads();          // in 10
   void collectiveCheck(const std::string &local_error) const;
   void checkEarlyNodes() const;
   /// \brief "contact surface 'j' (option explicit)" if the element has a contact face, else "".

@@ -2,7 +2,7 @@
 /// \file Decomposition.hpp
 /// \brief What a decomposed run keeps about its piece of the mesh: the maps to the
 /// global numbering, which nodes this rank owns (for sums and output), the shared-node sum
-/// plan of steps 7 and 10b, and the arrays step 10b needs. Null in the serial Solver.
+/// plan of steps 7, 9b and 10, and the arrays the sums of 9b and 10 need. Null in the serial Solver.
 #include "core/Types.hpp"
 #include "parallel/GhostFaces.hpp"
 #include "parallel/NodeHalo.hpp"
@@ -26,7 +26,7 @@ struct DomainDecomposition
   std::vector<Index> output_cell;
   std::unique_ptr<NodeHalo> halo;
   IndexView shared_nodes; ///< local ids of the shared nodes
-  /// Step 10b: the partial contact / pressure forces of this rank, summed over the copies in
+  /// Steps 9b and 10: the partial contact / pressure forces of this rank, summed over the copies in
   /// their own arrays so no force is counted twice.
   VectorView f_contact, f_load;
   /// Contact (steps 4 and 8): the ghost faces and nodes, this rank's own contact faces and the

@@ -1,6 +1,6 @@
 #pragma once
 /// \file NodeHalo.hpp
-/// \brief Shared-node sum (cycle steps 7 and 10b, set-up node masses): a communication plan
+/// \brief Shared-node sum (cycle steps 7, 9b and 10, set-up node masses): a communication plan
 /// built once from a LocalDomain, with persistent buffers and persistent MPI requests.
 ///
 /// Every copy of a shared node ends with the same bits: after the exchange each rank adds the
