@@ -1,5 +1,6 @@
 #pragma once
 // Helpers shared by the tests: run decks in-process or through the binary, read CSV files.
+#include "core/InputError.hpp"
 #include "driver/Solver.hpp"
 #include "input/Deck.hpp"
 
@@ -64,6 +65,21 @@ inline std::string writeWorkFile(const std::string &name, const std::string &tex
   const std::string path = std::string(SCPDYN_TEST_WORKDIR) + "/" + name;
   std::ofstream(path) << text;
   return path;
+}
+
+/// \brief The InputError message of calling f (parsing or setting up a deck), or "accepted".
+template <class F>
+std::string inputErrorOf(F &&f)
+{
+  try
+  {
+    f();
+  }
+  catch (const InputError &e)
+  {
+    return e.what();
+  }
+  return "accepted";
 }
 
 /// \brief Deck parsed from YAML text (the path names it in messages).

@@ -168,20 +168,17 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
   auto mode = _tie_mode;
   const int dim = _dim, Q = _tie_points;
   const Index rows = cp.count * Q;
-  auto vstar = _vstar;
+  auto W = _cg_w;
   Real sums[2] = {0, 0}; // r.z, and the same norm of the face velocities themselves
   Kokkos::parallel_reduce(
       "scpdyn::contact::tieSetup", Kokkos::RangePolicy<ExecSpace>(0, rows),
       KOKKOS_LAMBDA(const Index c, Real &sum, Real &scale) {
         const Index p = c / Q;
-        Real r[3] = {B(c, 0), B(c, 1), B(c, 2)}, z[3], D[3], Dn, V1[3], V2[3], zv[3], wv[3];
+        Real r[3] = {B(c, 0), B(c, 1), B(c, 2)}, z[3], D[3], Dn, zv[3];
+        Real wv[3] = {W(c, 0), W(c, 1), W(c, 2)};
         project(cp, p, mode(c), dim, r);
         tieDiagonal(F, cp, tw, c, p, mass, bc, dt, dim, D, Dn);
         precondition(cp, p, mode(c), D, Dn, r, z);
-        rowVelocity(F, cp, tw, c, p, 0, vstar, V1);
-        rowVelocity(F, cp, tw, c, p, 1, vstar, V2);
-        for (int d = 0; d < 3; ++d)
-          wv[d] = contact_math::abs(V1[d]) + contact_math::abs(V2[d]);
         project(cp, p, mode(c), dim, wv);
         precondition(cp, p, mode(c), D, Dn, wv, zv);
         const bool counted = ownsPlane(F, cp, p); // a cross-rank CP counts once
@@ -278,6 +275,7 @@ void ContactSystem::allocateTieRows()
   _cg_z = VectorView("cg_z", n);
   _cg_ap = VectorView("cg_ap", n);
   _cg_b = VectorView("cg_b", n);
+  _cg_w = VectorView("cg_w", n);
   _tie_mode = IndexView("tie_mode", n);
   _tie.w1 = DeviceView<Real *[kMaxFaceNodes]>("tie_w1", n);
   _tie.w2 = DeviceView<Real *[kMaxFaceNodes]>("tie_w2", n);
@@ -292,7 +290,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   auto mass = nodes.mass;
   auto bc = nodes.bc;
   auto used = _faces.nodes_used;
-  auto X = _cg_x, B = _cg_b;
+  auto X = _cg_x, B = _cg_b, W = _cg_w;
   auto mode = _tie_mode;
   const int dim = _dim, Q = _tie_points;
   const Index nused = Index(used.extent(0)), rows = cp.count * Q;
@@ -335,6 +333,8 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
                   : sticky_row                                             ? TieFull
                   : o == ContactOption::SlideLine && poc_row && excess > 0 ? TieNormal
                                                                            : TieNone;
+        for (int d = 0; d < 3; ++d) // the scale of the solve's round-off stop (tieSolve)
+          W(c, d) = contact_math::abs(V1[d]) + contact_math::abs(V2[d]);
         for (int d = 0; d < 3; ++d)
           B(c, d) = sticky_row                                 ? V1[d] - V2[d]
                     : o == ContactOption::SlideLine && poc_row ? excess * cp.normal(p, d)

@@ -158,6 +158,7 @@ private:
   bool _has_constraints = false, _has_explicit = false;
   bool _has_sticky = false, _has_slide = false;
   VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
+  VectorView _cg_w;    ///< per tie row: |V1| + |V2| of v*, the scale of the solve's round-off stop
   IndexView _tie_mode; ///< per tie row: which velocity constraint it imposes this cycle
   TieWeights _tie;     ///< per tie row: the face weights at its point (step 9, A-D)
   int _tie_points = 1; ///< tie rows per CP: 2 in 2D (tieWeights2D), else 1

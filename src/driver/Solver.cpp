@@ -65,11 +65,12 @@ void Solver::cycle()
   // (an artefact in the balance); the run ends on the first cycle at or past the end time.
   _dt = _dt_next;
   _gravity = gravityAt(_time);
-  stepSortIntoBins();             // 3: cycle begins; contact faces into bins when due
-  stepExchangeFaceConnectivity(); // 4: bounding boxes, occupied bins, ghost-face lists
-  stepZeroForces();               // 5: zero forces; external-face variables
-  stepElementSolvers();           // 6: half-step kinematics, materials, internal forces
-                                  //    (and step 12 of the nodes 7-11 leave alone: NodeSweep)
+  _gravity_next = gravityAt(_time + _dt); // what step 12 clears f_ext to
+  stepSortIntoBins();                     // 3: cycle begins; contact faces into bins when due
+  stepExchangeFaceConnectivity();         // 4: bounding boxes, occupied bins, ghost-face lists
+  stepZeroForces();                       // 5: zero forces; external-face variables
+  stepElementSolvers();                   // 6: half-step kinematics, materials, internal forces
+      //    (and step 12 of the nodes 7-11 leave alone: NodeSweep)
   stepExchangeSharedNodeForces(); // 7: sum internal forces on shared nodes
   stepFaceBoundaryConditions();   // 10: pressure on faces, and on shared nodes their sum,
   stepNodeBoundaryConditions();   // 11: nodal forces (velocities are imposed in 12): both
@@ -120,9 +121,8 @@ void Solver::stepElementSolvers()
   const ElementControls controls = elementControls();
   if (_m.sweep.active) // step 12 of the early nodes, in this step's sweep
   {
-    const std::array<Real, 3> next_gravity = gravityAt(_time + _dt);
     _m.sweep.node = nodeIntegrator(_m.nodes, _m.bc.velocity_current, _dt,
-                                   _m.dd ? _m.dd->owned_device : IndexView(), next_gravity.data());
+                                   _m.dd ? _m.dd->owned_device : IndexView(), _gravity_next.data());
     _m.sweep.loads = _m.external_loads;
   }
   const ElementStepResult r = computeElementForces(_m.groups, controls, _m.nodes, _m.elems,
@@ -175,10 +175,9 @@ void Solver::stepUpdateNodes()
   if (_check_sweep)
     checkEarlyNodes();
   updateVelocityValues(_m.bc, _time + _dt);
-  const std::array<Real, 3> next_gravity = gravityAt(_time + _dt);
   _last_sums = updateNodes(_m.nodes, _m.bc, _dt, _m.deck.dimension,
                            _m.dd ? _m.dd->owned_device : IndexView(), _m.external_loads,
-                           next_gravity.data(), _m.sweep.active ? &_m.sweep.late_runs : nullptr);
+                           _gravity_next.data(), _m.sweep.active ? &_m.sweep.late_runs : nullptr);
   if (_m.sweep.active) // the early nodes' sums, from step 6
     _last_sums += sweepSums(_m.sweep);
   _forces_zeroed = true;
@@ -219,9 +218,8 @@ std::string Solver::contactSurfaceOf(Index mesh_element) const
 void Solver::checkEarlyNodes() const
 {
   std::string what;
-  const std::array<Real, 3> next_gravity = gravityAt(_time + _dt);
   const Index n = earlyNodeWrittenLate(_m.sweep, _m.nodes, _early_snapshot, _m.external_loads,
-                                       next_gravity.data(), &what);
+                                       _gravity_next.data(), &what);
   std::string error;
   if (n >= 0)
     error = "node " + std::to_string(globalNode(n)) + " was integrated in step 6 and then " +

@@ -155,8 +155,9 @@ private:
   Real _time = 0;
   Real _dt = 0;
   Real _dt_next = 0;
-  int _gravity_function = -1;   ///< index into the deck's functions, or -1: constant gravity
-  std::array<Real, 3> _gravity; ///< the gravity of this cycle, g(t^n) [m/s^2]
+  int _gravity_function = -1;          ///< index into the deck's functions, or -1: constant gravity
+  std::array<Real, 3> _gravity;        ///< the gravity of this cycle, g(t^n) [m/s^2]
+  std::array<Real, 3> _gravity_next{}; ///< the next cycle's, g(t^n + dt) [m/s^2]
   long _cycle = 0;
   Real _external_work = 0;
   Real _kinetic_mid = 0; ///< 1/2 sum m v^n.v^{n+1} of the last step

@@ -16,8 +16,6 @@ namespace scpdyn
 namespace
 {
 
-using input_impl::formatReal;
-
 // Reals go out as their shortest exact decimal text (a plain scalar), so that they read back
 // bit for bit; strings are always double-quoted, so a title like "2" or "yes" stays a string.
 YAML::Emitter &real(YAML::Emitter &out, Real x) { return out << formatReal(x); }

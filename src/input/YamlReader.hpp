@@ -103,7 +103,6 @@ int editDistance(const std::string &a, const std::string &b);
 std::string suggestion(const std::string &word, const std::vector<std::string> &candidates);
 /// \brief "a, b, c".
 std::string joined(const std::vector<std::string> &words);
-using scpdyn::formatReal; // core/RealText.hpp
 
 } // namespace input_impl
 } // namespace scpdyn

@@ -298,6 +298,18 @@ void mergeCoincidentNodes(HostMesh &mesh, const std::vector<int> &parts, Real to
         f.nodes[i] = renum[f.nodes[i]];
 }
 
+MeshBox meshBox(const HostMesh &mesh)
+{
+  MeshBox b;
+  for (const auto &c : mesh.coords)
+    for (size_t i = 0; i < 3; ++i)
+    {
+      b.lo[i] = std::min(b.lo[i], c[i]);
+      b.hi[i] = std::max(b.hi[i], c[i]);
+    }
+  return b;
+}
+
 std::vector<Index> nodesInBox(const HostMesh &mesh, std::array<Real, 3> lo, std::array<Real, 3> hi,
                               Real tol)
 {

@@ -14,6 +14,8 @@
 /// (the Exodus side order: tet face 0 is opposite node 2, 1 opposite 0, 2 opposite 1, 3 opposite 3).
 #include "mesh/HostMesh.hpp"
 
+#include <cmath>
+
 #include <array>
 #include <string>
 #include <vector>
@@ -72,6 +74,20 @@ void checkElements(const HostMesh &mesh);
 /// \brief Appends `src` to `dst`: nodes, parts (names prefixed with `prefix`), node sets and
 /// face sets, with node, element and part ids shifted past what `dst` already holds.
 void appendMesh(HostMesh &dst, HostMesh src, const std::string &prefix);
+
+/// \brief The box of every node of a mesh [m] (unused components are zero, so 0 to 0).
+struct MeshBox
+{
+  std::array<Real, 3> lo{{1e300, 1e300, 1e300}}, hi{{-1e300, -1e300, -1e300}};
+  Real diagonal() const
+  {
+    Real d = 0;
+    for (int i = 0; i < 3; ++i)
+      d += (hi[size_t(i)] - lo[size_t(i)]) * (hi[size_t(i)] - lo[size_t(i)]);
+    return std::sqrt(d);
+  }
+};
+MeshBox meshBox(const HostMesh &mesh);
 
 /// \brief Length (m), area (m^2) or volume (m^3) of one part (exact for these element types).
 Real meshMeasure(const HostMesh &mesh, int part);

@@ -5,6 +5,7 @@
 
 #include "contact/ContactSystem.hpp"
 #include "contact/JointGauge.hpp"
+#include "mesh/MeshOps.hpp"
 #include "parallel/Decomposition.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -20,6 +21,7 @@ void ModelSetup::setupGauges()
   // gauges are resolved on the whole mesh (every rank alike), then kept by the rank that owns
   // the node or holds the element; the others keep id -1
   const HostMesh &mesh = _m.global_mesh ? *_m.global_mesh : _m.mesh;
+  const MeshBox box = meshBox(mesh); // a gauge point must lie near it
   std::vector<Index> ids;
   std::vector<Index> codes;
   for (size_t g = 0; g < _m.deck.gauges.size(); ++g)
@@ -33,23 +35,14 @@ void ModelSetup::setupGauges()
     if (spec.has_point)
     {
       // a point well outside every mesh is a typo (a unit, a sign), not a gauge
-      const int dim = _m.deck.dimension;
-      Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, diag = 0;
-      for (const auto &x : mesh.coords)
-        for (int i = 0; i < dim; ++i)
-          lo[i] = std::min(lo[i], x[size_t(i)]), hi[i] = std::max(hi[i], x[size_t(i)]);
-      for (int i = 0; i < dim; ++i)
-        diag += (hi[i] - lo[i]) * (hi[i] - lo[i]);
-      const Real margin = 0.1 * std::sqrt(diag);
-      for (int i = 0; i < dim; ++i)
-        if (spec.point[size_t(i)] < lo[i] - margin || spec.point[size_t(i)] > hi[i] + margin)
+      const Real margin = 0.1 * box.diagonal();
+      for (int i = 0; i < _m.deck.dimension; ++i)
+        if (spec.point[size_t(i)] < box.lo[size_t(i)] - margin ||
+            spec.point[size_t(i)] > box.hi[size_t(i)] + margin)
           throw InputError(key + ".point: coordinate " + std::to_string(i) + " = " +
                            formatReal(spec.point[size_t(i)]) + " m lies outside the meshes (" +
-                           formatReal(lo[i]) + " to " + formatReal(hi[i]) +
+                           formatReal(box.lo[size_t(i)]) + " to " + formatReal(box.hi[size_t(i)]) +
                            " m, with a margin of 10 % of their diagonal)");
-    }
-    if (spec.has_point)
-    {
       // nearest node, or the element with the nearest centroid
       Real best = std::numeric_limits<Real>::max();
       const Index count = on_element ? mesh.numElements() : mesh.numNodes();

@@ -252,19 +252,7 @@ void ModelSetup::setupMesh()
   try
   {
     if (merge_parts.size() > 1)
-    {
-      Real lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-      for (const auto &c : _m.mesh.coords)
-        for (int i = 0; i < 3; ++i)
-        {
-          lo[i] = std::min(lo[i], c[size_t(i)]);
-          hi[i] = std::max(hi[i], c[size_t(i)]);
-        }
-      const Real diag =
-          std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
-      mergeCoincidentNodes(_m.mesh, merge_parts, 1e-9 * diag);
-    }
+      mergeCoincidentNodes(_m.mesh, merge_parts, 1e-9 * meshBox(_m.mesh).diagonal());
     checkElements(_m.mesh);
   }
   catch (const std::exception &e)

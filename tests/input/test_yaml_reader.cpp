@@ -11,6 +11,7 @@
 namespace
 {
 using namespace scpdyn::input_impl;
+using scpdyn::formatReal;
 
 TEST(YamlReader, EditDistance)
 {

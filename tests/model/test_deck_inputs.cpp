@@ -120,15 +120,7 @@ TEST(DeckInputs, BadInitialConditionsAndGravityNameTheKey)
       "parts:\n  - {name: a, material: rock, mesh: {elements: [2, 2], size: [0.1, 0.1]}}\n"
       "node_sets:\n  - {name: sa, part: a}\n";
   auto message = [&](const std::string &extra) {
-    try
-    {
-      parseDeckString(base + extra, "bad.yaml");
-    }
-    catch (const InputError &e)
-    {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
+    return inputErrorOf([&] { parseDeckString(base + extra, "bad.yaml"); });
   };
   EXPECT_NE(message("initial_conditions:\n  - {node_set: nope, velocity: [1, 0]}\n")
                 .find("initial_conditions[0].node_set"),

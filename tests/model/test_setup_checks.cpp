@@ -22,15 +22,8 @@ const std::string kRock = "materials:\n  - {name: rock, model: elastic, density:
 /// The InputError message of setting up the deck, or "accepted".
 std::string setupError(const std::string &yaml, const std::string &name)
 {
-  try
-  {
-    Solver s(parseDeckString(yaml, writeWorkFile(name + ".yaml", yaml)));
-  }
-  catch (const InputError &e)
-  {
-    return e.what();
-  }
-  return "accepted";
+  return inputErrorOf(
+      [&] { Solver s(parseDeckString(yaml, writeWorkFile(name + ".yaml", yaml))); });
 }
 
 /// Two quads as gmsh physical surfaces 'left' and 'right' sharing the edge x = 1, and a
