@@ -75,11 +75,13 @@ struct MeshSpec
   std::array<Real, 3> origin{{0, 0, 0}};
   std::array<Real, 3> size{{0, 0, 0}};
   // brick_wall: bricks of `brick_size`, `elements` cells per brick, `count` bricks per direction,
-  // every other course (row along y in 2D, z in 3D) shifted along x by stagger * brick length
+  // every other course (a line of bricks along the stagger axis) shifted along that axis by
+  // stagger * brick length
   std::array<Real, 3> brick_size{{0, 0, 0}};
   std::array<int, 3> count{{1, 1, 1}};
   Real stagger = 0.5;
-  std::string file; ///< gmsh: path to .msh 4.1 ASCII (relative to the deck)
+  int stagger_axis = 0; ///< 0 = x, 1 = y
+  std::string file;     ///< gmsh: path to .msh 4.1 ASCII (relative to the deck)
 };
 
 struct PartSpec

@@ -29,8 +29,8 @@ std::array<Real, 3> positiveVector(const YamlMap &m, const std::string &key, int
 
 MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
 {
-  const YamlMap m = value.map(
-      {"type", "element", "elements", "origin", "size", "brick_size", "count", "stagger", "file"});
+  const YamlMap m = value.map({"type", "element", "elements", "origin", "size", "brick_size",
+                               "count", "stagger", "stagger_axis", "file"});
   MeshSpec mesh;
   mesh.type = readChoice(m, "type", {MeshType::Block, MeshType::BrickWall, MeshType::Gmsh},
                          MeshType::Block);
@@ -48,8 +48,10 @@ MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
   if (mesh.type == MeshType::Block)
     restrictKeys(m, {"type", "element", "elements", "origin", "size"}, "mesh type 'block'");
   else
-    restrictKeys(m, {"type", "element", "elements", "origin", "brick_size", "count", "stagger"},
-                 "mesh type 'brick_wall'");
+    restrictKeys(
+        m,
+        {"type", "element", "elements", "origin", "brick_size", "count", "stagger", "stagger_axis"},
+        "mesh type 'brick_wall'");
 
   mesh.element = readChoice(
       m, "element", {ElementType::Line2, ElementType::Quad4, ElementType::Hex8, ElementType::Tet4},
@@ -74,6 +76,13 @@ MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
   mesh.count = m["count"].intVector(dim, 1, 1);
   mesh.stagger = readReal(
       m, "stagger", mesh.stagger, [](Real s) { return s >= 0 && s < 1; }, "in [0, 1)");
+  if (m.has("stagger_axis"))
+  {
+    // courses shift along x or y; in 1D there is only x
+    const std::string a = m["stagger_axis"].choice(dim == 1 ? std::vector<std::string>{"x"}
+                                                            : std::vector<std::string>{"x", "y"});
+    mesh.stagger_axis = a == "x" ? 0 : 1;
+  }
   return mesh;
 }
 

@@ -71,6 +71,7 @@ void writeMesh(YAML::Emitter &out, const MeshSpec &m, int dim)
     vector(out, "count", m.count, dim);
     out << YAML::Key << "stagger" << YAML::Value;
     real(out, m.stagger);
+    out << YAML::Key << "stagger_axis" << YAML::Value << (m.stagger_axis == 0 ? "x" : "y");
   }
   out << YAML::EndMap;
 }

@@ -128,35 +128,44 @@ void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
 
 void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type,
                      std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
-                     std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger)
+                     std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger,
+                     int stagger_axis)
 {
   if (!(stagger >= 0 && stagger < 1))
     throw std::runtime_error("brick wall '" + prefix + "': stagger must lie in [0, 1), got " +
                              std::to_string(stagger));
   // 1D: one course, a row of line2 blocks along x (the jointed bar of the paper's Fig. 2)
   const int dim = dimensionOf(type);
+  if (stagger_axis < 0 || stagger_axis > 1 || (dim == 1 && stagger_axis != 0))
+    throw std::runtime_error("brick wall '" + prefix + "': stagger axis must be x" +
+                             (dim > 1 ? " or y" : "") + " in " + std::to_string(dim) + "D");
   const bool is3d = dim == 3;
-  const int courses = is3d ? count[2] : dim == 2 ? count[1] : 1;
-  const int rows = is3d ? count[1] : 1; // bricks along y within a 3D course
-  if (count[0] < 1 || courses < 1 || rows < 1)
+  const int s = stagger_axis;
+  // courses stack across the stagger axis in 2D, along z in 3D; rows are the third axis of 3D
+  const int course_axis = is3d ? 2 : 1 - s;
+  const int row_axis = 1 - s;
+  const int courses = dim == 1 ? 1 : count[size_t(course_axis)];
+  const int rows = is3d ? count[size_t(row_axis)] : 1;
+  const int along = count[size_t(s)];
+  if (along < 1 || courses < 1 || rows < 1)
     throw std::runtime_error("brick wall '" + prefix + "': brick counts must be positive");
-  const Real L = brick_size[0];
-  const int course_axis = is3d ? 2 : 1;
+  const Real L = brick_size[size_t(s)];
 
   for (int c = 0; c < courses; ++c)
   {
-    // Segments of the course along x as (start offset, length fraction) in brick lengths.
+    // Segments of the course along the stagger axis as (start offset, length fraction) in
+    // brick lengths.
     std::vector<std::pair<Real, Real>> seg;
     const bool shifted = (c % 2 == 1) && stagger > 0;
     if (shifted)
     {
       seg.push_back({0, stagger});
-      for (int i = 0; i + 1 < count[0]; ++i)
+      for (int i = 0; i + 1 < along; ++i)
         seg.push_back({stagger + i, 1});
-      seg.push_back({stagger + count[0] - 1, 1 - stagger});
+      seg.push_back({stagger + along - 1, 1 - stagger});
     }
     else
-      for (int i = 0; i < count[0]; ++i)
+      for (int i = 0; i < along; ++i)
         seg.push_back({Real(i), 1});
 
     for (int j = 0; j < rows; ++j)
@@ -166,13 +175,14 @@ void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type
         std::array<Real, 3> o = origin, size = brick_size;
         if (seg[i].second < 1)
         {
-          cells[0] = std::max(1, int(std::lround(cells_per_brick[0] * seg[i].second)));
-          size[0] = L * seg[i].second;
+          cells[size_t(s)] =
+              std::max(1, int(std::lround(cells_per_brick[size_t(s)] * seg[i].second)));
+          size[size_t(s)] = L * seg[i].second;
         }
-        o[0] = origin[0] + L * seg[i].first;
+        o[size_t(s)] = origin[size_t(s)] + L * seg[i].first;
         if (is3d)
-          o[1] = origin[1] + brick_size[1] * j;
-        o[course_axis] = origin[course_axis] + brick_size[course_axis] * c;
+          o[size_t(row_axis)] = origin[size_t(row_axis)] + brick_size[size_t(row_axis)] * j;
+        o[size_t(course_axis)] = origin[size_t(course_axis)] + brick_size[size_t(course_axis)] * c;
         const std::string name =
             prefix + "." + std::to_string(c) + "." + std::to_string(j * int(seg.size()) + int(i));
         appendBlock(mesh, name, type, cells, o, size);

@@ -26,15 +26,20 @@ void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
                  std::array<int, 3> cells, std::array<Real, 3> origin, std::array<Real, 3> size);
 
 /// \brief Append a rectangular wall of bricks, each its own part named
-/// `<prefix>.<course>.<index>`. 2D (Quad4): count[0] bricks per course along x, count[1]
-/// courses along y. 3D (Hex8, Tet4): count[0] along x, count[1] along y, count[2] courses
-/// along z; index = j * (bricks along x in that course) + i. Every odd course is shifted along
-/// x by stagger * brick length (0 <= stagger < 1) and has a partial brick at each end
-/// (lengths stagger * L and (1 - stagger) * L, which get max(1, round(cells * fraction))
-/// cells along x), so the wall stays count[0] * L long; stagger = 0 gives a stack bond.
-/// `cells_per_brick` are the cells of a full brick, `brick_size` its edge lengths (m).
+/// `<prefix>.<course>.<index>`. A course is a line of bricks along the stagger axis
+/// (`stagger_axis` 0 = x, 1 = y); every odd course is shifted along that axis by
+/// stagger * brick length (0 <= stagger < 1) and has a partial brick at each end (lengths
+/// stagger * L and (1 - stagger) * L, which get max(1, round(cells * fraction)) cells along
+/// the axis), so the wall keeps its length; stagger = 0 gives a stack bond.
+/// 2D (Quad4): courses stack along the other axis (stagger axis x: count[0] bricks per course,
+/// count[1] courses along y; axis y: count[1] bricks per course, count[0] courses along x).
+/// 3D (Hex8, Tet4): courses stack along z (count[2] of them), each with count[axis] bricks
+/// along the stagger axis in count[other axis] rows; index = row * (bricks in the course) + i.
+/// 1D (Line2): one course along x. `cells_per_brick` are the cells of a full brick,
+/// `brick_size` its edge lengths (m).
 void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type,
                      std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
-                     std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger);
+                     std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger,
+                     int stagger_axis = 0);
 
 } // namespace scpdyn

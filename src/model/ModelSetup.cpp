@@ -177,7 +177,7 @@ void ModelSetup::checkMeshSize() const
       cells *= m.elements[size_t(d)];
       cell_nodes *= m.elements[size_t(d)] + 1.0L;
       if (m.type == MeshType::BrickWall) // a staggered course has one brick more
-        bricks *= m.count[size_t(d)] + (d == 0 ? 1.0L : 0.0L);
+        bricks *= m.count[size_t(d)] + (d == m.stagger_axis ? 1.0L : 0.0L);
     }
     const long double per_cell = m.element == ElementType::Tet4 ? 6 : 1;
     elements += bricks * cells * per_cell;
@@ -216,7 +216,7 @@ void ModelSetup::setupMesh()
         appendBlock(_m.mesh, spec.name, m.element, m.elements, m.origin, m.size);
       else if (m.type == MeshType::BrickWall)
         appendBrickWall(_m.mesh, spec.name, m.element, m.elements, m.origin, m.brick_size, m.count,
-                        m.stagger);
+                        m.stagger, m.stagger_axis);
       else
       {
         HostMesh g = readGmsh41(m.file);

@@ -54,7 +54,8 @@ parts:
   - name: wall
     material: granite
     mesh: {type: brick_wall, element: tet4, elements: [2, 1, 1], origin: [0.1, 0, 0],
-           brick_size: [0.2, 0.1, 0.1], count: [4, 1, 3], stagger: 0.25}
+           brick_size: [0.2, 0.1, 0.1], count: [4, 1, 3], stagger: 0.25,
+           stagger_axis: y}
     merge_nodes: yes
   - name: projectile
     material: steel
@@ -166,6 +167,7 @@ void expectSameDeck(const Deck &a, const Deck &b)
     EXPECT_EQ(p.mesh.brick_size, q.mesh.brick_size);
     EXPECT_EQ(p.mesh.count, q.mesh.count);
     EXPECT_EQ(p.mesh.stagger, q.mesh.stagger);
+    EXPECT_EQ(p.mesh.stagger_axis, q.mesh.stagger_axis);
     EXPECT_EQ(p.mesh.file, q.mesh.file);
   }
   for (auto sets :
@@ -276,6 +278,7 @@ TEST(DeckParser, FullDeckFillsEveryField)
   EXPECT_EQ(wall.brick_size, (std::array<Real, 3>{{0.2, 0.1, 0.1}}));
   EXPECT_EQ(wall.count, (std::array<int, 3>{{4, 1, 3}}));
   EXPECT_EQ(wall.stagger, 0.25);
+  EXPECT_EQ(wall.stagger_axis, 1);
   EXPECT_TRUE(d.parts[1].merge_nodes);
   // gmsh paths are made absolute and normalised against the deck's directory
   EXPECT_EQ(d.parts[2].mesh.file, fs::absolute(kWork + "/meshes/ball.msh").string());

@@ -211,3 +211,52 @@ TEST(MeshGenerators, BrickWallStackBondAnd3D)
   EXPECT_EQ(t.numElements(), 6 * (2 * 2 + 1 + 2 + 1));
   EXPECT_NO_THROW(checkElements(t));
 }
+
+// The paper's Fig. 3 imbricate mesh is staggered in y: columns of bricks along y, every other
+// column shifted. It must be the x-staggered wall with x and y exchanged, brick for brick.
+TEST(MeshGenerators, BrickWallStaggeredInYIsTheTransposedWall)
+{
+  HostMesh xw, yw;
+  appendBrickWall(xw, "w", ElementType::Quad4, {{4, 2, 1}}, {{0, 0, 0}}, {{0.02, 0.01, 0}},
+                  {{3, 4, 1}}, 0.5);
+  appendBrickWall(yw, "w", ElementType::Quad4, {{2, 4, 1}}, {{0, 0, 0}}, {{0.01, 0.02, 0}},
+                  {{4, 3, 1}}, 0.5, 1);
+  ASSERT_EQ(yw.parts.size(), xw.parts.size());
+  EXPECT_EQ(yw.parts.size(), 3u * 2 + 4u * 2); // odd columns: one brick more
+  EXPECT_NO_THROW(checkElements(yw));
+  for (size_t p = 0; p < xw.parts.size(); ++p)
+  {
+    EXPECT_EQ(yw.parts[p].name, xw.parts[p].name);
+    EXPECT_EQ(yw.parts[p].numElements(), xw.parts[p].numElements()) << xw.parts[p].name;
+    EXPECT_NEAR(meshMeasure(yw, int(p)), meshMeasure(xw, int(p)), 1e-18) << xw.parts[p].name;
+    // the same brick: its box with x and y exchanged
+    std::array<Real, 2> lo_x{{1, 1}}, lo_y{{1, 1}};
+    for (Index n : xw.parts[p].connectivity)
+      for (int d = 0; d < 2; ++d)
+        lo_x[size_t(d)] = std::min(lo_x[size_t(d)], xw.coords[size_t(n)][size_t(d)]);
+    for (Index n : yw.parts[p].connectivity)
+      for (int d = 0; d < 2; ++d)
+        lo_y[size_t(d)] = std::min(lo_y[size_t(d)], yw.coords[size_t(n)][size_t(d)]);
+    EXPECT_NEAR(lo_y[0], lo_x[1], 1e-15) << xw.parts[p].name;
+    EXPECT_NEAR(lo_y[1], lo_x[0], 1e-15) << xw.parts[p].name;
+  }
+  EXPECT_EQ(yw.parts[3].name, "w.1.0"); // column 1 starts with the half brick at y = 0
+  EXPECT_NEAR(meshMeasure(yw, 3), 0.01 * 0.01, 1e-18);
+
+  // 3D: courses along z stay; a course runs along y, rows along x
+  HostMesh h;
+  appendBrickWall(h, "h", ElementType::Hex8, {{2, 4, 2}}, {{0, 0, 0}}, {{0.1, 0.2, 0.05}},
+                  {{3, 2, 2}}, 0.25, 1);
+  EXPECT_EQ(h.parts.size(), 6u + 9u);
+  EXPECT_EQ(h.parts[6].numElements(), 2 * 1 * 2); // round(4 * 0.25) cells along y
+  Real vol = 0;
+  for (int p = 0; p < int(h.parts.size()); ++p)
+    vol += meshMeasure(h, p);
+  EXPECT_NEAR(vol, 0.3 * 0.4 * 0.1, kMeasureTol * 0.012);
+  EXPECT_NO_THROW(checkElements(h));
+
+  HostMesh b;
+  EXPECT_THROW(appendBrickWall(b, "b", ElementType::Line2, {{3, 1, 1}}, {{0, 0, 0}},
+                               {{0.001, 0, 0}}, {{4, 1, 1}}, 0.5, 1),
+               std::runtime_error);
+}
