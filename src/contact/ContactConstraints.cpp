@@ -1,6 +1,7 @@
 // The velocity-constraint options of step 9 (docs/theory.md 10.5, 10.8, 11.1, 11.2): all sticky
-// and slide-line CPs are solved together, every cycle, as one linear system for their forces
-// (preconditioned conjugate gradients), with an active set for the slide lines' "no tension".
+// and slide-line CPs are solved together, every cycle, as one system for their forces: the ties
+// alone by preconditioned conjugate gradients (here), with slide lines as a bound-constrained
+// problem for their "no tension" (ContactBoundSolve.cpp).
 //
 // Why not one pass of independent CP forces (10.8): a node at a brick corner or T-junction
 // belongs to several CPs, and each CP's m* assumes it owns the node, so one pass over-corrects
@@ -13,119 +14,14 @@
 // overlap (cp_geometry::tieWeights2D), each with the shape-function weights of both faces there
 // (docs/theory.md 11.2); a slide line, and a 3D or 1D sticky CP, acts at its POC (row 0 of its
 // CP, the others idle). Row c belongs to CP c / Q, Q = ContactSystem::_tie_points.
-#include "contact/ContactKernels.hpp"
 #include "contact/ContactSystem.hpp"
 #include "contact/JointConstraints.hpp"
+#include "contact/TieRows.hpp"
 
 namespace scpdyn
 {
 using namespace contact_kernels;
-
-namespace
-{
-
-enum TieMode : int
-{
-  TieNone = 0,  ///< not constrained this cycle
-  TieFull = 1,  ///< sticky: V1 = V2 at the end of the step (25)
-  TieNormal = 2 ///< slide line in compression: (V1 - V2).n = gap/dt (D14)
-};
-
-/// dt sum w^2/M over the nodes of tie row c (of CP p), per component d whose velocity is free
-/// (the diagonal of the tie operator); for a normal tie, the same along n.
-KOKKOS_INLINE_FUNCTION void tieDiagonal(const ContactFaceData &F, const CommonPlaneData &cp,
-                                        const TieWeights &tw, Index c, Index p,
-                                        const RealView &mass, const DeviceView<int *[3]> &bc,
-                                        Real dt, int dim, Real D[3], Real &Dn)
-{
-  D[0] = D[1] = D[2] = Dn = 0;
-  for (int side = 0; side < 2; ++side)
-  {
-    const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
-    for (int a = 0; a < F.num_nodes(f); ++a)
-    {
-      const Index k = F.nodes(f, a);
-      const Real w = side == 0 ? tw.w1(c, a) : tw.w2(c, a);
-      for (int d = 0; d < dim; ++d)
-        if (bc(k, d) < 0)
-        {
-          D[d] += dt * w * w / mass(k);
-          Dn += dt * w * w * cp.normal(p, d) * cp.normal(p, d) / mass(k);
-        }
-    }
-  }
-}
-
-/// Velocity of face `side` (0: face 1, 1: face 2) at tie row c of CP p.
-KOKKOS_INLINE_FUNCTION void rowVelocity(const ContactFaceData &F, const CommonPlaneData &cp,
-                                        const TieWeights &tw, Index c, Index p, int side,
-                                        const VectorView &v, Real V[3])
-{
-  if (side == 0)
-    faceVelocityWith(F, cp.face1(p), tw.w1, c, v, V);
-  else
-    faceVelocityWith(F, cp.face2(p), tw.w2, c, v, V);
-}
-
-/// The force Fv of tie row c of CP p on its own faces' nodes: -w1 Fv on face 1, +w2 Fv on
-/// face 2, into `out` as a force (dt_over_mass = false) or a velocity change dt Fv w / M of the
-/// free components (true). A ghost face gets nothing: its own rank adds that side.
-KOKKOS_INLINE_FUNCTION void rowScatter(const ContactFaceData &F, const CommonPlaneData &cp,
-                                       const TieWeights &tw, Index c, Index p, const Real Fv[3],
-                                       const VectorView &out, bool dt_over_mass,
-                                       const RealView &mass, const DeviceView<int *[3]> &bc,
-                                       Real dt, int dim)
-{
-  for (int side = 0; side < 2; ++side)
-  {
-    const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
-    if (F.ghost(f))
-      continue;
-    const Real sign = side == 0 ? -1.0 : 1.0;
-    for (int a = 0; a < F.num_nodes(f); ++a)
-    {
-      const Index k = F.nodes(f, a);
-      const Real w = sign * (side == 0 ? tw.w1(c, a) : tw.w2(c, a));
-      for (int d = 0; d < dim; ++d)
-        if (!dt_over_mass)
-          Kokkos::atomic_add(&out(k, d), w * Fv[d]);
-        else if (bc(k, d) < 0)
-          Kokkos::atomic_add(&out(k, d), w * Fv[d] * dt / mass(k));
-    }
-  }
-}
-
-/// Keep the constrained part of a CP vector: all of it (full tie), its normal part (normal
-/// tie) or nothing.
-KOKKOS_INLINE_FUNCTION void project(const CommonPlaneData &cp, Index p, int mode, int dim,
-                                    Real v[3])
-{
-  if (mode == TieNormal)
-  {
-    Real vn = 0;
-    for (int d = 0; d < 3; ++d)
-      vn += v[d] * cp.normal(p, d);
-    for (int d = 0; d < 3; ++d)
-      v[d] = vn * cp.normal(p, d);
-  }
-  for (int d = 0; d < 3; ++d)
-    if (mode == TieNone || d >= dim)
-      v[d] = 0;
-}
-
-/// The preconditioned residual z = diag^-1 r of one CP.
-KOKKOS_INLINE_FUNCTION void precondition(const CommonPlaneData &cp, Index p, int mode,
-                                         const Real D[3], Real Dn, const Real r[3], Real z[3])
-{
-  for (int d = 0; d < 3; ++d)
-    z[d] = mode == TieFull               ? (D[d] > 0 ? r[d] / D[d] : 0.0)
-           : mode == TieNormal && Dn > 0 ? r[d] / Dn
-                                         : 0.0;
-  (void)cp;
-  (void)p;
-}
-
-} // namespace
+using namespace tie_rows;
 
 void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorView &force)
 {
@@ -276,6 +172,8 @@ void ContactSystem::allocateTieRows()
   _cg_ap = VectorView("cg_ap", n);
   _cg_b = VectorView("cg_b", n);
   _cg_w = VectorView("cg_w", n);
+  _cg_s = VectorView("cg_s", n);
+  _cg_t = VectorView("cg_t", n);
   _tie_mode = IndexView("tie_mode", n);
   _tie.w1 = DeviceView<Real *[kMaxFaceNodes]>("tie_w1", n);
   _tie.w2 = DeviceView<Real *[kMaxFaceNodes]>("tie_w2", n);
@@ -312,8 +210,8 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
             vstar(k, d) += dt * joint(k, d) / mass(k);
       });
   // targets b: the relative velocity to remove at each tie point (sticky), or the normal
-  // approach beyond the gap at the POC (slide line); slide lines start active where they
-  // approach
+  // approach beyond the gap at the POC (slide line; one that separates gets no force from the
+  // bound-constrained solve)
   Kokkos::parallel_for(
       "scpdyn::contact::tieTargets", Kokkos::RangePolicy<ExecSpace>(0, rows),
       KOKKOS_LAMBDA(const Index c) {
@@ -327,60 +225,20 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         const Real gap = cp.state(p).u < 0 ? -cp.state(p).u : 0.0;
         const Real excess = Vn - gap / dt;
         const bool active = cp.status(p) != CpInactive;
-        const bool poc_row = c % Q == 0;
         const bool sticky_row = o == ContactOption::Sticky;
-        mode(c) = !active                                                  ? TieNone
-                  : sticky_row                                             ? TieFull
-                  : o == ContactOption::SlideLine && poc_row && excess > 0 ? TieNormal
-                                                                           : TieNone;
+        const bool slide_row = o == ContactOption::SlideLine && c % Q == 0; // at the POC
+        mode(c) = !active ? TieNone : sticky_row ? TieFull : slide_row ? TieNormal : TieNone;
         for (int d = 0; d < 3; ++d) // the scale of the solve's round-off stop (tieSolve)
           W(c, d) = contact_math::abs(V1[d]) + contact_math::abs(V2[d]);
         for (int d = 0; d < 3; ++d)
-          B(c, d) = sticky_row                                 ? V1[d] - V2[d]
-                    : o == ContactOption::SlideLine && poc_row ? excess * cp.normal(p, d)
-                                                               : 0.0;
+          B(c, d) = sticky_row ? V1[d] - V2[d] : slide_row ? excess * cp.normal(p, d) : 0.0;
       });
-  // Active set for "no tension" (D14): solve, free the slide lines that pull, add those that
-  // still approach beyond their gap, repeat until nothing changes.
-  for (int outer = 0; outer < 20; ++outer)
-  {
+  // ties alone: one linear system; with slide lines, their "no tension" makes it a
+  // bound-constrained one (ContactBoundSolve.cpp)
+  if (_has_slide)
+    boundSolve(nodes, dt);
+  else
     tieSolve(nodes, dt);
-    if (!_has_slide)
-      break;
-    tieScatter(nodes, dt, X);
-    Index changed = 0;
-    Kokkos::parallel_reduce(
-        "scpdyn::contact::tieActiveSet", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-        KOKKOS_LAMBDA(const Index p, Index &count) {
-          if (cp.params(p).option != ContactOption::SlideLine || cp.status(p) == CpInactive)
-            return;
-          const Index c = p * Q; // the POC row
-          Real V1[3], V2[3], Fn = 0, dVn = 0, bn = 0;
-          rowVelocity(F, cp, tw, c, p, 0, dv, V1);
-          rowVelocity(F, cp, tw, c, p, 1, dv, V2);
-          for (int d = 0; d < 3; ++d)
-          {
-            Fn += X(c, d) * cp.normal(p, d);
-            dVn += (V1[d] - V2[d]) * cp.normal(p, d);
-            bn += B(c, d) * cp.normal(p, d);
-          }
-          // tolerance: round-off of the removed approach velocity
-          const Real tol = 1e-9 * (contact_math::abs(bn) + contact_math::abs(dVn)) + 1e-300;
-          if (mode(c) == TieNormal && Fn < 0)
-          {
-            mode(c) = TieNone;
-            ++count;
-          }
-          else if (mode(c) == TieNone && bn + dVn > tol)
-          {
-            mode(c) = TieNormal;
-            ++count;
-          }
-        },
-        changed);
-    if (globalSum(Real(changed)) == 0)
-      break;
-  }
   // apply the forces: contact force, v*, CP totals
   tieScatter(nodes, dt, X);
   Kokkos::parallel_for(

@@ -18,6 +18,9 @@ namespace
 /// What a user can do about a diverged CP of option `P`.
 std::string advice(const JointParams &P)
 {
+  if (P.option == ContactOption::SlideLine)
+    return "; a slide line can only take energy out: its constraint solve did not hold (raise "
+           "contact.constraint_passes)";
   if (P.option != ContactOption::Explicit)
     return "; the joint is loaded beyond its law's range: check E0, a and Emax";
   return std::string("; the explicit contact is unstable at this time step") +
@@ -73,7 +76,7 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
           first = p;
       },
       Kokkos::Min<Index>(bad));
-  // energy test on the joint CPs: their net work this cycle, booked per CP like the nodal
+  // energy test on the joint and slide-line CPs: their net work this cycle, booked per CP like the nodal
   // work above, 1/2 (V1 - V2)^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}) (the previous force from
   // the histories at the start of step 9; the weights of this cycle)
   if (_cp_work.extent(0) < size_t(cp.count))
@@ -86,8 +89,8 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
       KOKKOS_LAMBDA(const Index p) {
         const JointParams &P = cp.params(p);
         cp_work(p) = 0;
-        if (isConstraint(P.option))
-          return;
+        if (P.option == ContactOption::Sticky || P.option == ContactOption::Sleepy)
+          return; // a tie does no work: its booked work is round-off and lag of either sign
         Real V1[3], V2[3], w = 0;
         cpVelocities(F, cp, p, P.velocity, v, V1, V2);
         const CpState &o = before(p);
@@ -102,27 +105,53 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   Kokkos::parallel_reduce(
       "scpdyn::contact::jointWorkSum", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p, Real &sum) {
-        if (ownsPlane(F, cp, p))
+        if (ownsPlane(F, cp, p) && !isConstraint(cp.params(p).option))
           sum += cp_work(p);
       },
       joint_work);
   Kokkos::parallel_reduce(
       "scpdyn::contact::jointWorkGross", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p, Real &sum) {
-        if (ownsPlane(F, cp, p))
+        if (ownsPlane(F, cp, p) && !isConstraint(cp.params(p).option))
           sum += cp_work(p) < 0 ? -cp_work(p) : cp_work(p);
       },
       gross);
+  // slide lines: their net work, and the kinetic energy of the contact nodes, the scale of the
+  // leapfrog lag of either sign that persistent contact books (a quasi-static patch: 1e-20 J)
+  Real slide_work = 0, ke_contact = 0;
+  if (_has_slide)
+  {
+    Kokkos::parallel_reduce(
+        "scpdyn::contact::slideWorkSum", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+        KOKKOS_LAMBDA(const Index p, Real &sum) {
+          if (ownsPlane(F, cp, p) && cp.params(p).option == ContactOption::SlideLine)
+            sum += cp_work(p);
+        },
+        slide_work);
+    auto mass = nodes.mass;
+    Kokkos::parallel_reduce(
+        "scpdyn::contact::contactNodeEnergy", Kokkos::RangePolicy<ExecSpace>(0, nused),
+        KOKKOS_LAMBDA(const Index i, Real &sum) {
+          const Index k = used(i);
+          for (int d = 0; d < dim; ++d)
+            sum += 0.5 * mass(k) * v(k, d) * v(k, d);
+        },
+        ke_contact);
+  }
   // the energy test is on the whole model (decomposed: the sums over the ranks)
-  Real sums[4] = {joint_work, gross, stored, Real(cp.count)};
+  Real sums[6] = {joint_work, gross, stored, Real(cp.count), slide_work, ke_contact};
   if (_comm.sum)
-    _comm.sum(sums, 4);
+    _comm.sum(sums, 6);
   const Real jw = _joint_work + sums[0];
   const Real jw_peak = std::max(_joint_work_peak, jw);
   const Real stored_peak = std::max(_stored_peak, sums[2]);
   const Real jw_gross = _joint_work_gross + sums[1];
-  const bool created =
-      bad >= cp.count && sums[3] > 0 && contactCreatedEnergy(jw, jw_peak, stored_peak, jw_gross);
+  const Real sw = _slide_work + sums[4];
+  const Real sw_peak = std::max(_slide_work_peak, sw);
+  const bool slide_created =
+      _has_slide && contactCreatedEnergy(sw, sw_peak + kSlideLag * sums[5], 0, 0);
+  const bool created = bad >= cp.count && sums[3] > 0 &&
+                       (contactCreatedEnergy(jw, jw_peak, stored_peak, jw_gross) || slide_created);
   if (created)
   { // name the CP that gave the mesh the most energy this cycle
     Kokkos::MinLoc<Real, Index>::value_type least;
@@ -150,7 +179,11 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
     bool finite = std::isfinite(s.u) && std::isfinite(s.Fn);
     for (int d = 0; d < 3; ++d)
       finite = finite && std::isfinite(force(bad, d)) && std::isfinite(s.Fs[d]);
-    if (created)
+    if (created && slide_created)
+      os << "the slide lines gave the mesh " << -sw << " J net (more than the most they ever "
+         << "took in, " << sw_peak << " J): energy created, most of it this cycle at "
+         << describe(bad);
+    else if (created)
       os << "the joints gave the mesh " << -jw << " J net (more than the most they ever took in, "
          << jw_peak << " J, or held, " << stored_peak << " J): energy created, most of it "
          << "this cycle at " << describe(bad);
@@ -181,6 +214,8 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   _joint_work = jw;
   _joint_work_peak = jw_peak;
   _joint_work_gross = jw_gross;
+  _slide_work = sw;
+  _slide_work_peak = sw_peak;
   _stored_peak = stored_peak;
   _dt_prev = dt;
   return ContactFailure();

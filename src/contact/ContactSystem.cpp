@@ -83,6 +83,7 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
     _has_explicit = _has_explicit || o == "explicit";
     _has_sticky = _has_sticky || o == "sticky";
     _has_slide = _has_slide || o == "slide_line";
+    _surface_labels.push_back("'" + deck.contact.surfaces[s].name + "' (option " + o + ")");
   }
   const size_t n = size_t(in.nodes.count);
   _vstar = VectorView("contact_vstar", n);
@@ -401,6 +402,12 @@ std::string ContactSystem::describe(Index cp) const
   face(f1(cp));
   os << " and ";
   face(f2(cp));
+  auto surface = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.surface);
+  const size_t s1 = size_t(surface(f1(cp))), s2 = size_t(surface(f2(cp)));
+  if (s1 < _surface_labels.size() && s2 < _surface_labels.size())
+    os << " of contact surface"
+       << (s1 == s2 ? " " + _surface_labels[s1]
+                    : "s " + _surface_labels[s1] + " and " + _surface_labels[s2]);
   return os.str();
 }
 

@@ -124,7 +124,8 @@ public:
   const VectorView &nodalForces() const { return _fc; }
   /// \brief The live CPs, copied to the host.
   ContactPointsHost points() const;
-  /// \brief "faces (element 12 face 1 of part 'a') and (element 40 face 3 of part 'b')".
+  /// \brief "common plane 3 between faces (element 12 face 1 of part 'a') and (element 40 face
+  /// 3 of part 'b') of contact surface 'j' (option implicit)".
   std::string describe(Index cp) const;
 
 private:
@@ -133,6 +134,9 @@ private:
   void jointForces(const NodeFields &nodes, Real dt);
   void constraintPasses(const NodeFields &nodes, Real dt);
   int tieSolve(const NodeFields &nodes, Real dt);
+  int boundSolve(const NodeFields &nodes, Real dt);
+  void tieApply(const NodeFields &nodes, Real dt, const VectorView &in, const VectorView &out);
+  Real tieOperatorBound(const NodeFields &nodes, Real dt);
   void tieScatter(const NodeFields &nodes, Real dt, const VectorView &force);
   void allocateTieRows();
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
@@ -151,6 +155,7 @@ private:
   std::vector<Index> _ghost_of_face; ///< per face: its index among the ghosts, or -1
   ContactComm _comm;
   std::vector<std::string> _part_names;
+  std::vector<std::string> _surface_labels; ///< per surface: "'name' (option o)", for messages
   CommonPlaneData _cp;
   FaceGeometryData _geom;
   FaceBins _bins;
@@ -159,6 +164,8 @@ private:
   bool _has_sticky = false, _has_slide = false;
   VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
   VectorView _cg_w;    ///< per tie row: |V1| + |V2| of v*, the scale of the solve's round-off stop
+  VectorView _cg_s;    ///< per tie row: D^(-1/2), the bound solve's scaling
+  VectorView _cg_t;    ///< per tie row: scratch of the bound solve
   IndexView _tie_mode; ///< per tie row: which velocity constraint it imposes this cycle
   TieWeights _tie;     ///< per tie row: the face weights at its point (step 9, A-D)
   int _tie_points = 1; ///< tie rows per CP: 2 in 2D (tieWeights2D), else 1
@@ -174,6 +181,7 @@ private:
   // its |increments|, the peak stored energy, and the step of the last cycle
   RealView _cp_work;
   Real _joint_work = 0, _joint_work_peak = 0, _joint_work_gross = 0, _stored_peak = 0;
+  Real _slide_work = 0, _slide_work_peak = 0; ///< the slide lines' net work and its peak
   Real _dt_prev = 0;
   Real _stored = 0;
   Index _max_count = 0;
