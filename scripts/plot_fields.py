@@ -249,8 +249,9 @@ def draw_panel(ax, run, k, name=None, centre="cell", values=None, norm=None, cma
         pts = run.contact_points(k)[:, :2] / length
         if len(pts):
             pts = np.vstack([pts * s for s in signs])
-            # white shows on the dark low end of turbo, black on the bare mesh
-            ax.scatter(pts[:, 0], pts[:, 1], s=1.0, c="k" if name is None else "w", marker=".",
+            # white shows on the dark low end of turbo, red among the bare mesh's black edges
+            ax.scatter(pts[:, 0], pts[:, 1], s=2.0 if name is None else 1.0,
+                       c="r" if name is None else "w", marker=".",
                        linewidths=0)
     ax.set_aspect("equal")
     ax.autoscale_view()
