@@ -21,6 +21,7 @@ frame, combined into one PNG.
   --out PNG      default OUTDIR/fields_<field>.png
 
 Prints `plot_fields: wrote PNG field NAME range MIN MAX` (SI units, over the drawn frames).
+The fields and their units: README.md, "Pictures".
 Exit status 2 on a bad argument (no fields.h5, unknown field, time outside the frames).
 """
 import argparse
@@ -331,11 +332,14 @@ def plot_3d(runs, rows, name, centre, vmin, vmax, args):
     factor, label = label_of(name, vmin, vmax)
     tmp = tempfile.mkdtemp(prefix="plot_fields_")
     try:
+        getter = runs[0].fields()[name][1]
+        # a contact frame without CPs holds a placeholder point at the origin: not drawn
         panels = [dict(xmf=os.path.abspath(os.path.join(run.dir, "fields.xmf")),
                        contacts=os.path.abspath(os.path.join(run.dir, "contacts.xmf"))
-                       if args.contacts and run.contacts is not None else None,
+                       if args.contacts and len(run.contact_points(k)) else None,
                        time=float(run.times[k]), png=os.path.join(tmp, f"{i}_{j}.png"),
-                       title=f"{run.name}: t = {fmt_time(run.times[k])} (frame {k})")
+                       title=f"{run.name}: t = {fmt_time(run.times[k])} (frame {k})",
+                       want=[x / factor for x in field_range([run], [(0, [k])], getter)])
                   for i, (_, row) in enumerate(rows) for j, (run, k) in enumerate(zip(runs, row))]
         spec = dict(panels=panels, expression=f"({pv_expression(name, centre)})/{factor!r}",
                     centre=centre, label=label, range=[vmin / factor, vmax / factor],
@@ -352,7 +356,7 @@ def plot_3d(runs, rows, name, centre, vmin, vmax, args):
             sys.exit(f"plot_fields: pvbatch failed (exit {r.returncode}):\n{r.stdout[-3000:]}")
         with open(spec["result"]) as f:
             for p, (lo, hi) in zip(panels, json.load(f)):
-                want = [x / factor for x in field_range_of_panel(runs, rows, p, name)]
+                want = p["want"]
                 if not np.allclose([lo, hi], want, rtol=1e-6, atol=1e-12 * max(map(abs, want))):
                     sys.exit(f"plot_fields: ParaView coloured {p['title']} by range {lo} {hi}, "
                              f"fields.h5 has {want[0]} {want[1]}")
@@ -370,14 +374,6 @@ def plot_3d(runs, rows, name, centre, vmin, vmax, args):
         plt.close(fig)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-
-
-def field_range_of_panel(runs, rows, panel, name):
-    for run in runs:
-        if os.path.abspath(os.path.join(run.dir, "fields.xmf")) == panel["xmf"]:
-            k = int(np.argmin(np.abs(run.times - panel["time"])))
-            v = run.fields()[name][1](run.frames[k])
-            return float(np.nanmin(v)), float(np.nanmax(v))
 
 
 def pvbatch_main(spec_path):
