@@ -29,11 +29,13 @@ NAMES = ["monolithic", "imbricate, sticky joints"]
 
 
 def main():
-    ap = argparse.ArgumentParser(usage=__doc__.split("\n\n")[1].replace("usage: ", ""))
-    ap.add_argument("--force", action="store_true")
-    ap.add_argument("--times", nargs="+", type=float, default=[1e-6, 3e-6, 5e-6])
+    ap = argparse.ArgumentParser(description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--force", action="store_true", help="rerun the decks")
+    ap.add_argument("--times", nargs="+", type=float, default=[1e-6, 3e-6, 5e-6], metavar="T",
+                    help="times of the rows, s")
     ap.add_argument("--decks", nargs=2, metavar=("MONO", "IMB"),
-                    default=[pu.deck_path(d) for d in DECKS])
+                    default=[pu.deck_path(d) for d in DECKS], help="two other decks")
     args = ap.parse_args()
     runs, summaries = [], []
     for deck, name in zip(args.decks, NAMES):
