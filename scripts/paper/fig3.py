@@ -39,6 +39,8 @@ def main():
     args = ap.parse_args()
     runs, summaries = [], []
     for deck, name in zip(args.decks, NAMES):
+        if not os.path.exists(deck):
+            sys.exit(f"fig3.py: no deck '{deck}'")
         out = os.path.join(pu.OUT, "fig3", os.path.splitext(os.path.basename(deck))[0])
         summaries.append(pu.run(deck, out, force=args.force))
         run = pf.Run(out)
@@ -54,7 +56,7 @@ def main():
     fig.suptitle("Fig. 3: deformed meshes (the quarter model, lit at the origin), contact "
                  "points of the joints as red dots", fontsize=10)
     pu.save_figure(fig, "fig3_meshes")
-    centre, getter = pf.field_of(runs, "pressure")
+    _, getter = pf.field_of(runs, "pressure")
     vrange = pf.field_range(runs, rows, getter)
     fig = pf.figure_2d(runs, rows, "pressure", vrange, contacts=True, mirror=True, width=4.5)
     fig.suptitle("Fig. 4: pressure (the quarter model mirrored about x = 0 and y = 0), "
