@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Run a deck: set-up and build if needed, run scpdyn, plot the gauges.
+# Run a deck: set-up and build if needed, run scpdyn, plot the gauges and draw the pressure.
 #   scripts/run.sh [DECK [scpdyn options]]   (default deck: the project's default scene)
 #   scripts/run.sh --help                    this text (scpdyn's options: scpdyn --help)
 # Results: -o DIR if given, else the deck's output.directory, else out/<deck name>.
@@ -30,5 +30,12 @@ trap 'rm -f "$log"' EXIT
 OUT="$(sed -n 's/^scpdyn: done, .*; results in //p' "$log" | tail -n 1)"
 [ -n "$OUT" ] || exit 0 # scpdyn --help, --version: nothing to plot
 /usr/bin/python3 "$ROOT/scripts/plot_gauges.py" "$OUT" >&2 || echo "scripts/run.sh: plotting failed" >&2
+# the pressure on the deformed mesh; exit status 2 (no fields.h5, no pressure field, no pvbatch
+# for a 3D run) means there is nothing to draw: no picture, no message
+rc=0
+picture="$(/usr/bin/python3 "$ROOT/scripts/plot_fields.py" "$OUT" 2>"$log")" || rc=$?
+picture="$(sed -n 's/^plot_fields: wrote \(.*\) field .*/\1/p' <<<"$picture")"
+[ "$rc" -eq 0 ] || [ "$rc" -eq 2 ] || { cat "$log" >&2; echo "scripts/run.sh: drawing the fields failed" >&2; }
 echo "results: $OUT (fields.xmf for ParaView, history.csv, gauges.csv, summary.json)"
 echo "plot:    $OUT/gauges.png"
+[ "$rc" -ne 0 ] || echo "picture: $picture"
