@@ -40,8 +40,8 @@ KOKKOS_INLINE_FUNCTION Real along(const CommonPlaneData &cp, Index p, const Real
 /// beta, the chopped gradient (bound slide-line rows the gradient would push); phit, the reduced
 /// free gradient (phi cut to the step that reaches the bound, x.n / abar).
 KOKKOS_INLINE_FUNCTION void gradientParts(const CommonPlaneData &cp, Index p, int mode,
-                                          const Real x[3], const Real g[3], Real abar,
-                                          Real phi[3], Real beta[3], Real phit[3])
+                                          const Real x[3], const Real g[3], Real abar, Real phi[3],
+                                          Real beta[3], Real phit[3])
 {
   for (int d = 0; d < 3; ++d)
     phi[d] = beta[d] = phit[d] = 0;
@@ -133,8 +133,9 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
             for (int d = 0; d < dim; ++d)
               if (bc(k, d) < 0)
               {
-                const Real e = mode(c) == TieFull ? S(c, d) * b
-                                                  : S(c, d) * b * contact_math::abs(cp.normal(p, d));
+                const Real e = mode(c) == TieFull
+                                   ? S(c, d) * b
+                                   : S(c, d) * b * contact_math::abs(cp.normal(p, d));
                 sum[mode(c) == TieFull ? d : 0] += e;
                 if (!F.ghost(f))
                   Kokkos::atomic_add(&dv(k, d), e);
@@ -206,9 +207,9 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
         }
         const Real bn = S(c, 0) * along(cp, p, b);
         if (counted)
-          g0 += mode(c) == TieFull     ? S(c, 0) * b[0] * S(c, 0) * b[0] +
-                                             S(c, 1) * b[1] * S(c, 1) * b[1] +
-                                             S(c, 2) * b[2] * S(c, 2) * b[2]
+          g0 += mode(c) == TieFull
+                    ? S(c, 0) * b[0] * S(c, 0) * b[0] + S(c, 1) * b[1] * S(c, 1) * b[1] +
+                          S(c, 2) * b[2] * S(c, 2) * b[2]
                 : mode(c) == TieNormal ? contact_math::max(bn, 0.0) * contact_math::max(bn, 0.0)
                                        : 0.0;
       },
@@ -321,7 +322,8 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
   int it = 0;
   for (; it < cap && n[0] + n[1] > stop; ++it)
   {
-    if (n[1] <= n[2]) // proportional (Gamma = 1): the bound rows want less than the free rows can give
+    if (n[1] <=
+        n[2]) // proportional (Gamma = 1): the bound rows want less than the free rows can give
     {
       tieApply(nodes, dt, Pv, AP);
       Real pap, gp;

@@ -77,19 +77,13 @@ ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
 
 /// The files a run writes into its directory (and scripts/run.sh's plot of them), removed
 /// before a run so that none of a previous run's is left beside this run's.
-const std::vector<std::string> kRunFiles = {"fields.xmf",
-                                            "fields.h5",
-                                            "contacts.xmf",
-                                            "contacts.h5",
-                                            "history.csv",
-                                            "gauges.csv",
-                                            "summary.json",
-                                            "deck.resolved.yaml",
-                                            "gauges.png",
-                                            "fields.xmf.tmp",
-                                            "contacts.xmf.tmp",
-                                            "summary.json.tmp",
-                                            "deck.resolved.yaml.tmp"};
+const std::vector<std::string> kRunFiles = {"fields.xmf",       "fields.h5",
+                                            "contacts.xmf",     "contacts.h5",
+                                            "history.csv",      "gauges.csv",
+                                            "summary.json",     "deck.resolved.yaml",
+                                            "gauges.png",       "fields_pressure.png",
+                                            "fields.xmf.tmp",   "contacts.xmf.tmp",
+                                            "summary.json.tmp", "deck.resolved.yaml.tmp"};
 
 /// "%.3g" of a byte count with its decimal unit (kB, MB, GB, TB).
 std::string formatBytes(double bytes)
