@@ -94,6 +94,10 @@ struct JointParams
   bool implicit_shear = true;   ///< (D13) in the implicit option (10.7)
   bool brittle_tension = false; ///< sigma_t (and C) -> 0 for a CP after it first opens (6.5)
   int bc_id = 0;                ///< face-BC id: decides non-numeric fields in averageParams()
+  // slide line: Coulomb friction mu = mu_k + (mu_s - mu_k) exp(-mu_dc |Vs|)
+  Real mu_s = 0;  ///< static coefficient [-]
+  Real mu_k = 0;  ///< kinetic coefficient [-]
+  Real mu_dc = 0; ///< decay coefficient [s/m]
 };
 
 /// \brief Fill the derived defaults (Emax = 1e4*E0, sigma_t = C/tan(phi0), or 0 when phi0 = 0).
@@ -129,6 +133,9 @@ KOKKOS_INLINE_FUNCTION JointParams averageParams(const JointParams &p1_in, const
   r.Emax = 0.5 * (p1.Emax + p2.Emax);
   r.sigma_t = 0.5 * (p1.sigma_t + p2.sigma_t);
   r.C_safe = p1.C_safe < p2.C_safe ? p1.C_safe : p2.C_safe;
+  r.mu_s = 0.5 * (p1.mu_s + p2.mu_s);
+  r.mu_k = 0.5 * (p1.mu_k + p2.mu_k);
+  r.mu_dc = 0.5 * (p1.mu_dc + p2.mu_dc);
   return r;
 }
 

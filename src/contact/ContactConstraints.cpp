@@ -239,6 +239,8 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
     boundSolve(nodes, dt);
   else
     tieSolve(nodes, dt);
+  if (_has_friction) // the slide lines' Coulomb friction, on their normal forces
+    slideFriction(nodes, dt);
   // apply the forces: contact force, v*, CP totals
   tieScatter(nodes, dt, X);
   Kokkos::parallel_for(

@@ -68,6 +68,9 @@ JointParams jointParamsOf(const SurfaceSpec &s, int bc_id)
   p.implicit_shear = s.implicit_shear;
   p.brittle_tension = s.brittle_tension;
   p.bc_id = bc_id;
+  p.mu_s = s.mu_static;
+  p.mu_k = s.mu_kinetic < 0 ? s.mu_static : s.mu_kinetic;
+  p.mu_dc = s.mu_decay;
   return resolveParams(p);
 }
 

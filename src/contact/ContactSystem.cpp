@@ -83,6 +83,7 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
     _has_explicit = _has_explicit || o == "explicit";
     _has_sticky = _has_sticky || o == "sticky";
     _has_slide = _has_slide || o == "slide_line";
+    _has_friction = _has_friction || (o == "slide_line" && deck.contact.surfaces[s].mu_static > 0);
     _surface_labels.push_back("'" + deck.contact.surfaces[s].name + "' (option " + o + ")");
   }
   const size_t n = size_t(in.nodes.count);

@@ -137,6 +137,7 @@ private:
   int boundSolve(const NodeFields &nodes, Real dt);
   void tieApply(const NodeFields &nodes, Real dt, const VectorView &in, const VectorView &out);
   Real tieOperatorBound(const NodeFields &nodes, Real dt);
+  void slideFriction(const NodeFields &nodes, Real dt);
   void tieScatter(const NodeFields &nodes, Real dt, const VectorView &force);
   void allocateTieRows();
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
@@ -161,7 +162,8 @@ private:
   FaceBins _bins;
   long _binned_cycle = -1;
   bool _has_constraints = false, _has_explicit = false;
-  bool _has_sticky = false, _has_slide = false;
+  bool _has_sticky = false, _has_slide = false, _has_friction = false;
+  VectorView _share; ///< per node (component 0): friction rows on it (ContactFriction.cpp)
   VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
   VectorView _cg_w;    ///< per tie row: |V1| + |V2| of v*, the scale of the solve's round-off stop
   VectorView _cg_s;    ///< per tie row: D^(-1/2), the bound solve's scaling

@@ -194,6 +194,10 @@ struct SurfaceSpec
   bool traction_history = true;
   bool implicit_shear = true;
   bool brittle_tension = false;
+  // slide_line: Coulomb friction mu = mu_kinetic + (mu_static - mu_kinetic) exp(-mu_decay |v|)
+  Real mu_static = 0;   ///< static coefficient [-]; 0: frictionless
+  Real mu_kinetic = -1; ///< kinetic coefficient [-]; < 0: mu_static
+  Real mu_decay = 0;    ///< decay coefficient [s/m]
 };
 
 /// \brief The contact section: no surfaces means no contact.

@@ -37,7 +37,10 @@ const std::vector<std::string> kSurfaceKeys = {"name",
                                                "velocity",
                                                "traction_history",
                                                "implicit_shear",
-                                               "brittle_tension"};
+                                               "brittle_tension",
+                                               "mu_static",
+                                               "mu_kinetic",
+                                               "mu_decay"};
 
 /// A Table 1 stress or modulus in GPa; values that only make sense in Pa get a unit hint.
 Real readGPa(const YamlMap &m, const std::string &key, Real fallback, bool positive)
@@ -66,6 +69,25 @@ Real readAutoGPa(const YamlMap &m, const std::string &key)
   if (!m.has(key) || m[key].text() == "auto")
     return -1;
   return readGPa(m, key, -1, false);
+}
+
+/// Coulomb friction of a slide line (LS-DYNA's FS, FD, DC): the joint options have their own
+/// friction (phi0, phi1), the sticky option none.
+void parseFriction(const YamlMap &m, SurfaceSpec &s)
+{
+  for (const char *key : {"mu_static", "mu_kinetic", "mu_decay"})
+    if (m.has(key) && s.option != "slide_line")
+      m[key].fail("friction coefficients belong to the slide_line option; option '" + s.option +
+                  "' " +
+                  (s.option == "sticky" ? "does not slip"
+                                        : "has the joint law's friction angles phi0 and phi1"));
+  auto coefficient = [](Real x) { return x >= 0 && x <= 10; };
+  s.mu_static = readReal(m, "mu_static", s.mu_static, coefficient, "in [0, 10]");
+  s.mu_kinetic = readReal(m, "mu_kinetic", s.mu_kinetic, coefficient, "in [0, 10]");
+  if (m.has("mu_kinetic") && s.mu_kinetic > s.mu_static)
+    m["mu_kinetic"].fail("must not exceed mu_static = " + formatReal(s.mu_static) + ", got " +
+                         m["mu_kinetic"].text());
+  s.mu_decay = readReal(m, "mu_decay", s.mu_decay, isNonNegative, ">= 0 (s/m)");
 }
 
 SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool check_sets,
@@ -125,6 +147,7 @@ SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool che
   s.traction_history = m.boolean("traction_history", s.traction_history);
   s.implicit_shear = m.boolean("implicit_shear", s.implicit_shear);
   s.brittle_tension = m.boolean("brittle_tension", s.brittle_tension);
+  parseFriction(m, s);
   return s;
 }
 

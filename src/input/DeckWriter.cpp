@@ -200,6 +200,15 @@ void writeContact(YAML::Emitter &out, const ContactSpec &c)
     out << YAML::Key << "traction_history" << YAML::Value << s.traction_history;
     out << YAML::Key << "implicit_shear" << YAML::Value << s.implicit_shear;
     out << YAML::Key << "brittle_tension" << YAML::Value << s.brittle_tension;
+    if (s.option == "slide_line")
+    {
+      out << YAML::Key << "mu_static" << YAML::Value;
+      real(out, s.mu_static);
+      out << YAML::Key << "mu_kinetic" << YAML::Value;
+      real(out, s.mu_kinetic < 0 ? s.mu_static : s.mu_kinetic);
+      out << YAML::Key << "mu_decay" << YAML::Value;
+      real(out, s.mu_decay);
+    }
     out << YAML::EndMap;
   }
   out << YAML::EndSeq << YAML::EndMap;

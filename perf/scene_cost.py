@@ -1,0 +1,60 @@
+#!/usr/bin/python3
+"""Whole-run cost of scene decks: each deck at each thread count, interleaved round after round
+(the host's speed drifts; interleaving spreads the drift over all variants), with bound threads.
+Prints the median wall time of the cycle, its spread, and the contact share (steps 3, 4, 8, 9 of
+the cycle's step timers) per deck and thread count.
+
+    perf/scene_cost.py [--rounds 5] [--threads 1 2] [--bin build/bin/scpdyn] DECK...
+
+Runs go to a temporary directory; only the summaries are read.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CONTACT_STEPS = ("03_", "04_", "08_", "09_")
+
+
+def run_once(binary, deck, threads, out):
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="spread",
+               OMP_PLACES="threads")
+    subprocess.run([binary, deck, "-o", out], env=env, check=True, stdout=subprocess.DEVNULL,
+                   stderr=subprocess.DEVNULL)
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    contact = sum(v for k, v in s["timers"].items() if k.startswith(CONTACT_STEPS))
+    return s["cycle_wall_time"], contact / s["cycle_wall_time"], s["cycles"]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("decks", nargs="+")
+    ap.add_argument("--rounds", type=int, default=5)
+    ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "bin", "scpdyn"))
+    a = ap.parse_args()
+    results = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for r in range(a.rounds):
+            for deck in a.decks:
+                for t in a.threads:
+                    out = os.path.join(tmp, f"{os.path.basename(deck)}.{t}")
+                    results.setdefault((deck, t), []).append(run_once(a.bin, deck, t, out))
+            print(f"round {r + 1}/{a.rounds} done", file=sys.stderr)
+    print(f"{'deck':48s} {'thr':>3s} {'cycles':>6s} {'median s':>9s} {'min-max s':>15s} "
+          f"{'contact':>8s}")
+    for (deck, t), runs in results.items():
+        walls = [w for w, _, _ in runs]
+        share = statistics.median(c for _, c, _ in runs)
+        print(f"{os.path.relpath(deck, ROOT):48s} {t:3d} {runs[0][2]:6d} "
+              f"{statistics.median(walls):9.3f} {min(walls):7.3f}-{max(walls):7.3f} "
+              f"{100 * share:7.1f}%")
+
+
+if __name__ == "__main__":
+    main()
