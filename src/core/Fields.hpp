@@ -18,6 +18,9 @@ struct NodeFields
   VectorView f_contact;        ///< contact forces of step 9 [N] (empty without contact surfaces)
   VectorView f_ext;            ///< external forces [N]
   VectorView external_impulse; ///< last step's (f_ext + constraint reaction) dt [N s]
+  /// last step's velocity-constraint reaction per constrained component, m (v^{n+1} - v^n) / dt
+  /// - F [N] (written by step 12; empty without velocity BCs)
+  VectorView reaction;
   RealView mass; ///< lumped mass [kg] (per metre in plane strain, per radian axisymmetric)
   DeviceView<int *[3]> bc; ///< per component: index of the velocity BC value, or -1
   Index count = 0;

@@ -77,13 +77,23 @@ ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
 
 /// The files a run writes into its directory (and scripts/run.sh's plot of them), removed
 /// before a run so that none of a previous run's is left beside this run's.
-const std::vector<std::string> kRunFiles = {"fields.xmf",       "fields.h5",
-                                            "contacts.xmf",     "contacts.h5",
-                                            "history.csv",      "gauges.csv",
-                                            "summary.json",     "deck.resolved.yaml",
-                                            "gauges.png",       "fields_pressure.png",
-                                            "fields.xmf.tmp",   "contacts.xmf.tmp",
-                                            "summary.json.tmp", "deck.resolved.yaml.tmp"};
+const std::vector<std::string> kRunFiles = {"fields.xmf",
+                                            "fields.h5",
+                                            "contacts.xmf",
+                                            "contacts.h5",
+                                            "history.csv",
+                                            "gauges.csv",
+                                            "rcforc.csv",
+                                            "spcforc.csv",
+                                            "matsum.csv",
+                                            "summary.json",
+                                            "deck.resolved.yaml",
+                                            "gauges.png",
+                                            "fields_pressure.png",
+                                            "fields.xmf.tmp",
+                                            "contacts.xmf.tmp",
+                                            "summary.json.tmp",
+                                            "deck.resolved.yaml.tmp"};
 
 /// "%.3g" of a byte count with its decimal unit (kB, MB, GB, TB).
 std::string formatBytes(double bytes)
@@ -133,7 +143,11 @@ RunEstimate estimateRun(const Solver &solver)
   e.history_rows = 1 + periodic(deck.history_interval);
   e.frames = 1 + (deck.field_interval > 0 ? periodic(deck.field_interval) : 1);
   const double gauge_columns = solver.gauges().empty() ? 0 : 1 + double(solver.gauges().size());
-  e.row_bytes = kCsvValueBytes * (13 + gauge_columns);
+  const RunHistoryColumns more = runHistoryColumns(deck);
+  double more_columns = double(more.parts.size()) + 1;
+  for (const auto *c : {&more.contact, &more.reactions})
+    more_columns += c->empty() ? 0 : 1 + double(c->size());
+  e.row_bytes = kCsvValueBytes * (13 + gauge_columns + more_columns);
   std::set<std::string> history_fields;
   for (const auto &m : solver.materialParams())
     for (const auto &n : historyNames(m))
@@ -282,6 +296,7 @@ void Outputs::begin()
   }
   _fields = dd ? std::make_unique<FieldWriter>(_dir, desc, dist)
                : std::make_unique<FieldWriter>(_dir, desc);
+  _run_histories = std::make_unique<RunHistories>(_solver);
   if (!root())
   {
     writeFrame();
@@ -303,6 +318,15 @@ void Outputs::begin()
     columns.push_back(g.column);
   if (!_solver.gauges().empty())
     _gauges = std::make_unique<CsvWriter>(_dir + "/gauges.csv", columns);
+  const RunHistoryColumns more = runHistoryColumns(deck);
+  auto csv = [&](const char *name, const std::vector<std::string> &names) {
+    std::vector<std::string> all{"time"};
+    all.insert(all.end(), names.begin(), names.end());
+    return names.empty() ? nullptr : std::make_unique<CsvWriter>(_dir + "/" + name, all);
+  };
+  _rcforc = _has_contacts ? csv("rcforc.csv", more.contact) : nullptr;
+  _spcforc = csv("spcforc.csv", more.reactions);
+  _matsum = csv("matsum.csv", more.parts);
   writeFrame();
   writeRows();
   _next_field = deck.field_interval;
@@ -419,8 +443,18 @@ void Outputs::writeRows()
   std::vector<double> row{_solver.time()};
   for (Real v : _solver.gaugeValues())
     row.push_back(v);
+  const RunHistories::Rows more = _run_histories->rows();
   if (!root())
     return;
+  for (auto [writer, values] : {std::make_pair(_rcforc.get(), &more.contact),
+                                std::make_pair(_spcforc.get(), &more.reactions),
+                                std::make_pair(_matsum.get(), &more.parts)})
+    if (writer)
+    {
+      std::vector<double> r{_solver.time()};
+      r.insert(r.end(), values->begin(), values->end());
+      writer->row(r);
+    }
   _history->row({_solver.time(), double(_solver.cycles()), _solver.dt(), r.kinetic, r.internal,
                  r.hourglass, r.external_work, r.contact, r.balance_error, r.momentum[0],
                  r.momentum[1], r.momentum[2], r.contact_dissipation});
@@ -535,8 +569,9 @@ void Outputs::finish(const std::string &error)
   if (!root())
     return;
   _history->close();
-  if (_gauges)
-    _gauges->close();
+  for (CsvWriter *w : {_gauges.get(), _rcforc.get(), _spcforc.get(), _matsum.get()})
+    if (w)
+      w->close();
   if (_contacts)
     _contacts->close();
   JsonObject timers, timer_stats;

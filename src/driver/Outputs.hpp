@@ -1,12 +1,14 @@
 #pragma once
 /// \file Outputs.hpp
 /// \brief Step 13's outputs: field frames (HDF5 + XDMF), history.csv, gauges.csv (with
-/// gauges), summary.json, the resolved deck and a progress line on stderr. Before the first
+/// gauges), rcforc.csv, spcforc.csv and matsum.csv at history.csv's rows (RunHistories.hpp),
+/// summary.json, the resolved deck and a progress line on stderr. Before the first
 /// cycle: an estimate of the run's cycles and output size (refused above the deck's limits),
 /// the lock of the output directory and the removal of a previous run's files. Decomposed
 /// runs: every member is collective; rank 0 locks the directory and writes the files, in the
 /// serial layout.
 #include "driver/OutputGather.hpp"
+#include "driver/RunHistories.hpp"
 #include "io/FieldWriter.hpp"
 #include "io/OutputDirectory.hpp"
 #include "io/TextOutput.hpp"
@@ -29,7 +31,7 @@ struct RunEstimate
   double cycles = 0;       ///< end time / first dt (rounded up), at most time.max_cycles
   double history_rows = 0; ///< rows of history.csv (and gauges.csv)
   double frames = 0;       ///< field frames (and contact frames)
-  double row_bytes = 0;    ///< one row of history.csv plus one of gauges.csv
+  double row_bytes = 0;    ///< one row of history.csv, gauges.csv and RunHistories' files
   double frame_bytes = 0;  ///< one field frame plus one contact frame, with their XDMF text
   double bytes = 0;        ///< all outputs
 };
@@ -76,6 +78,8 @@ private:
   bool _has_contacts = false;
   std::vector<int> _material_used; ///< per material: used by an element on any rank
   std::unique_ptr<CsvWriter> _history, _gauges;
+  std::unique_ptr<RunHistories> _run_histories;
+  std::unique_ptr<CsvWriter> _rcforc, _spcforc, _matsum; ///< rank 0, when they have columns
   double _next_field = 0, _next_history = 0;
   long _last_frame_cycle = -1, _last_row_cycle = -1;
   double _max_balance_error = 0, _last_balance_error = 0;

@@ -49,6 +49,7 @@ struct NodeIntegrator
 {
   VectorView x, v, f_int, f_ext, prev_impulse;
   VectorView f_contact; ///< read with Contact only
+  VectorView reaction;  ///< written on the constrained components when not empty
   RealView mass;
   DeviceView<int *[3]> bc;
   RealView vbc;    ///< BoundaryConditions::velocity_current
@@ -115,7 +116,10 @@ struct NodeIntegrator
       {
         v_new = vbc(k);
         // the constraint's reaction does the work that the velocity change needs
-        work_force += m * (v_new - v_old) / dt - f;
+        const Real r = m * (v_new - v_old) / dt - f;
+        work_force += r;
+        if (reaction.extent(0) != 0)
+          reaction(n, i) = r;
       }
       // Work on the leapfrog's own terms: 1/2 m v^n.v^{n+1} changes from n-1/2 to n+1/2
       // by 1/2 v^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}); booking external work the same

@@ -27,6 +27,7 @@ NodeIntegrator nodeIntegrator(const NodeFields &nodes, const RealView &velocity_
   k.f_ext = nodes.f_ext;
   k.f_contact = nodes.f_contact;
   k.prev_impulse = nodes.external_impulse;
+  k.reaction = nodes.reaction;
   k.mass = nodes.mass;
   k.bc = nodes.bc;
   k.vbc = velocity_values;

@@ -569,6 +569,8 @@ void ModelSetup::setupBoundaryConditions()
       h_pf(k, a) = pface[k][size_t(a)];
   Kokkos::deep_copy(_m.bc.pressure_face, h_pf);
   _m.bc.velocity_current = RealView("velocity_bc", _m.bc.velocity_value.size());
+  if (!_m.bc.velocity_value.empty()) // the reactions of spcforc.csv
+    _m.nodes.reaction = VectorView("reaction", size_t(_m.nodes.count));
   _m.bc.force_current = DeviceView<Real *[3]>("force_bc_value", _m.bc.force_value.size());
   _m.bc.pressure_current = RealView("pressure_bc_value", _m.bc.pressure_value.size());
 }

@@ -2,7 +2,9 @@
 # Hybrid MPI x OpenMP: every deck of tests/parallel/decks/ run as 1 rank x 1 thread,
 # 2 ranks x 1 thread and 1 rank x 2 threads; history.csv and gauges.csv of the last two must
 # agree with the first within 1e-9 (relative to the magnitude of each energy group, momentum
-# vector and gauge vector or tensor; see test_solver_decomposed.cpp for why such scales).
+# vector and gauge vector or tensor; see test_solver_decomposed.cpp for why such scales), and
+# so must rcforc.csv, spcforc.csv and matsum.csv where the deck has them (relative to each
+# surface pair's forces, all the reactions, each part's energies and each part's momentum).
 #   hybrid.sh SCPDYN MPIEXEC WORKDIR
 set -euo pipefail
 scpdyn=$1 mpiexec=$2 work=$3
@@ -17,7 +19,7 @@ for deck in "$here"/decks/*.yaml; do
     > /dev/null 2>&1
   OMP_NUM_THREADS=2 "$scpdyn" "$deck" -o "$work/$name.1x2" > /dev/null 2>&1
   python3 - "$work/$name" <<'PY' || status=1
-import csv, sys
+import csv, os, sys
 base = sys.argv[1]
 def read(path):
     rows = list(csv.reader(open(path)))
@@ -33,9 +35,16 @@ def kind(c):
     k = ('velocity' if q[0] == 'v' else 'displacement' if q[0] == 'd' and len(q) == 2 else
          'position' if len(q) == 1 else 'stress' if q[0] == 's' or q == 'pressure' else q)
     return g + ':' + k
+def group(c):
+    g, _, q = c.partition(':')
+    if q and f == 'spcforc.csv':
+        return 'reaction'
+    return g + (':momentum' if q.startswith('momentum') else '')
+more = [f for f in ('rcforc.csv', 'spcforc.csv', 'matsum.csv') if os.path.exists(base + '.1x1/' + f)]
 worst, where = 0.0, ''
 for run in ('2x1', '1x2'):
-    for f in ('history.csv', 'gauges.csv'):
+    for f in ['history.csv', 'gauges.csv'] + more:
+        kind_of = kind if f in ('history.csv', 'gauges.csv') else group
         h, a = read(base + '.1x1/' + f)
         h2, b = read(base + '.' + run + '/' + f)
         if h != h2 or len(a) != len(b):
@@ -43,11 +52,11 @@ for run in ('2x1', '1x2'):
         for j, c in enumerate(h):
             if c in ('cycle', 'energy_balance_error'):
                 continue
-            cols = [k for k in range(len(h)) if kind(h[k]) == kind(c)]
+            cols = [k for k in range(len(h)) if kind_of(h[k]) == kind_of(c)]
             scale = max(max(abs(r[k]) for r in a for k in cols), 1e-300)
             e = max(abs(x[j] - y[j]) for x, y in zip(a, b)) / scale
             if e > worst:
-                worst, where = e, '%s %s' % (run, c)
+                worst, where = e, '%s %s %s' % (run, f, c)
 print('%-40s worst relative difference %.3e (%s)' % (base.split('/')[-1], worst, where))
 sys.exit(0 if worst < 1e-9 else 1)
 PY
