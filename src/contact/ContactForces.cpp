@@ -202,20 +202,42 @@ ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const Bound
     if (_has_constraints)
       allocateTieRows();
     jointForces(nodes, dt);
+    if (_has_explicit)
+      recordApproach(nodes);
     if (_has_constraints)
       constraintPasses(nodes, dt);
   }
   return finish(nodes, dt, cycle, time);
 }
 
+void ContactSystem::recordApproach(const NodeFields &nodes)
+{
+  if (_approach.extent(0) < size_t(_cp.count))
+    _approach = RealView("cp_approach", size_t(_cp.count));
+  const ContactFaceData F = _faces;
+  const CommonPlaneData cp = _cp;
+  auto v = nodes.v;
+  auto approach = _approach;
+  Kokkos::parallel_for(
+      "scpdyn::contact::approach", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+      KOKKOS_LAMBDA(const Index p) {
+        Real V1[3], V2[3], Vn = 0;
+        cpVelocities(F, cp, p, cp.params(p).velocity, v, V1, V2);
+        for (int d = 0; d < 3; ++d)
+          Vn += (V1[d] - V2[d]) * cp.normal(p, d);
+        approach(p) = Vn;
+      });
+}
+
 Real ContactSystem::stableTimeStep(const NodeFields &nodes, const ElementFields &elements,
                                    Real dt_element) const
 {
+  (void)nodes;
   if (!_has_explicit || _cp.count == 0)
     return 1e300;
   const ContactFaceData F = _faces;
   const CommonPlaneData cp = _cp;
-  auto v = nodes.v;
+  auto approach = _approach;
   auto emass = elements.mass, volume = elements.volume;
   Real dt_min = 1e300;
   Kokkos::parallel_reduce(
@@ -225,12 +247,9 @@ Real ContactSystem::stableTimeStep(const NodeFields &nodes, const ElementFields 
         if (P.option != ContactOption::Explicit || cp.status(p) == CpInactive)
           return;
         const Index f1 = cp.face1(p), f2 = cp.face2(p);
-        Real V1[3], V2[3], Vn = 0;
-        cpVelocities(F, cp, p, P.velocity, v, V1, V2);
-        for (int d = 0; d < 3; ++d)
-          Vn += (V1[d] - V2[d]) * cp.normal(p, d);
-        const Real dt_c = explicitCpTimeStep(F, P, cp.state(p), f1, f2, cp.face_area1(p),
-                                             cp.face_area2(p), Vn, emass, volume, dt_element);
+        const Real dt_c =
+            explicitCpTimeStep(F, P, cp.state(p), f1, f2, cp.face_area1(p), cp.face_area2(p),
+                               approach(p), emass, volume, dt_element);
         m = dt_c < m ? dt_c : m;
       },
       Kokkos::Min<Real>(dt_min));

@@ -123,8 +123,7 @@ void ContactSystem::slideFriction(const NodeFields &nodes, Real dt)
             Real v2 = 0;
             for (int d = 0; d < dim; ++d)
               v2 += Vs[d] * Vs[d];
-            mu_row(c, 0) =
-                P.mu_k + (P.mu_s - P.mu_k) * kmath::exp(-P.mu_dc * kmath::sqrt(v2));
+            mu_row(c, 0) = P.mu_k + (P.mu_s - P.mu_k) * kmath::exp(-P.mu_dc * kmath::sqrt(v2));
           }
           // the total tangential force that stops the sliding, capped at mu Fn
           Real total[3] = {0, 0, 0}, s2 = 0;

@@ -71,8 +71,10 @@ public:
   /// \brief Step 9 acts on the nodes of the contact faces (in 1D also on the node that orients
   /// a point face) after step 6 (integrate/LateNodes.hpp).
   void declareLateNodes(LateNodes &late) const;
-  /// \brief Step 12: smallest explicit-contact time step (19) over the active explicit CPs, from
-  /// v^{n+1} (nodes.v after the update); `dt_element`, the horizon of the predicted closure,
+  /// \brief Step 12: smallest explicit-contact time step (19) over the active explicit CPs, with
+  /// their approach velocity of step 9 (v^n: after step 12 a ghost face's velocity is a step
+  /// old, and a CP computed on two ranks must get one answer); `dt_element`, the horizon of the
+  /// predicted closure,
   /// is the elements' own step of this cycle over all ranks (integrate/TimeStep.hpp) [s]. 1e300
   /// when no explicit CP limits.
   Real stableTimeStep(const NodeFields &nodes, const ElementFields &elements,
@@ -138,6 +140,7 @@ private:
   void tieApply(const NodeFields &nodes, Real dt, const VectorView &in, const VectorView &out);
   Real tieOperatorBound(const NodeFields &nodes, Real dt);
   void slideFriction(const NodeFields &nodes, Real dt);
+  void recordApproach(const NodeFields &nodes);
   void tieScatter(const NodeFields &nodes, Real dt, const VectorView &force);
   void allocateTieRows();
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
@@ -182,6 +185,7 @@ private:
   // energy-creation check (ContactFinish.cpp): the joint CPs' net work, its peak, the sum of
   // its |increments|, the peak stored energy, and the step of the last cycle
   RealView _cp_work;
+  RealView _approach; ///< per CP: its normal approach velocity in step 9, for the step-12 limit
   Real _joint_work = 0, _joint_work_peak = 0, _joint_work_gross = 0, _stored_peak = 0;
   Real _slide_work = 0, _slide_work_peak = 0; ///< the slide lines' net work and its peak
   Real _dt_prev = 0;

@@ -49,7 +49,7 @@ struct NodeIntegrator
 {
   VectorView x, v, f_int, f_ext, prev_impulse;
   VectorView f_contact; ///< read with Contact only
-  VectorView reaction;  ///< written on the constrained components when not empty
+  VectorView reaction;  ///< written on the constrained components by run<..., Record = true>
   RealView mass;
   DeviceView<int *[3]> bc;
   RealView vbc;    ///< BoundaryConditions::velocity_current
@@ -98,7 +98,9 @@ struct NodeIntegrator
   }
 
   /// Step 12 on node n, its terms added to s (then step 5 on it, with Clear).
-  template <int Dim, bool Loads, bool Clear, bool Contact = false>
+  /// Record: write the reactions (an instantiation of its own, so that runs without velocity
+  /// constraints keep the code, and the contracted bits, of the others).
+  template <int Dim, bool Loads, bool Clear, bool Contact = false, bool Record = false>
   KOKKOS_INLINE_FUNCTION void integrate(const Index n, Sums<Dim> &s) const
   {
     const Real m = mass(n);
@@ -118,7 +120,7 @@ struct NodeIntegrator
         // the constraint's reaction does the work that the velocity change needs
         const Real r = m * (v_new - v_old) / dt - f;
         work_force += r;
-        if (reaction.extent(0) != 0)
+        if (Record)
           reaction(n, i) = r;
       }
       // Work on the leapfrog's own terms: 1/2 m v^n.v^{n+1} changes from n-1/2 to n+1/2
@@ -146,12 +148,12 @@ struct NodeIntegrator
   }
 
   /// Nodes begin .. end - 1 in order, their terms added to `sums`.
-  template <int Dim, bool Loads, bool Clear, bool Contact = false>
+  template <int Dim, bool Loads, bool Clear, bool Contact = false, bool Record = false>
   KOKKOS_INLINE_FUNCTION void run(const Index begin, const Index end, NodeSums &sums) const
   {
     Sums<Dim> s;
     for (Index n = begin; n < end; ++n)
-      integrate<Dim, Loads, Clear, Contact>(n, s);
+      integrate<Dim, Loads, Clear, Contact, Record>(n, s);
     s.addTo(sums);
   }
 };

@@ -51,7 +51,7 @@ constexpr Index kNodeChunk = 256;
 #endif
 
 /// updateNodes() in dimension Dim over all nodes, or over the given runs.
-template <int Dim, bool Loads, bool Clear, bool Contact>
+template <int Dim, bool Loads, bool Clear, bool Contact, bool Record>
 NodeSums integrateAll(const NodeIntegrator &node, const Index count,
                       const DeviceView<Index *[2]> *given_runs)
 {
@@ -62,7 +62,7 @@ NodeSums integrateAll(const NodeIntegrator &node, const Index count,
     Kokkos::parallel_reduce(
         "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, Index(runs.extent(0))),
         KOKKOS_LAMBDA(const Index r, NodeSums &s) {
-          node.run<Dim, Loads, Clear, Contact>(runs(r, 0), runs(r, 1), s);
+          node.run<Dim, Loads, Clear, Contact, Record>(runs(r, 0), runs(r, 1), s);
         },
         Kokkos::Sum<NodeSums>(sums));
     return sums;
@@ -71,32 +71,36 @@ NodeSums integrateAll(const NodeIntegrator &node, const Index count,
       "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, (count + kNodeChunk - 1) / kNodeChunk),
       KOKKOS_LAMBDA(const Index chunk, NodeSums &s) {
         const Index begin = chunk * kNodeChunk;
-        node.run<Dim, Loads, Clear, Contact>(
+        node.run<Dim, Loads, Clear, Contact, Record>(
             begin, count - begin < kNodeChunk ? count : begin + kNodeChunk, s);
       },
       Kokkos::Sum<NodeSums>(sums));
   return sums;
 }
 
-template <int Dim, bool Contact>
+template <int Dim, bool Contact, bool Record>
 NodeSums integrateWithContact(const NodeIntegrator &node, const Index count, const bool loads,
                               const bool clear, const DeviceView<Index *[2]> *runs)
 {
   if (clear)
-    return loads ? integrateAll<Dim, true, true, Contact>(node, count, runs)
-                 : integrateAll<Dim, false, true, Contact>(node, count, runs);
-  return loads ? integrateAll<Dim, true, false, Contact>(node, count, runs)
-               : integrateAll<Dim, false, false, Contact>(node, count, runs);
+    return loads ? integrateAll<Dim, true, true, Contact, Record>(node, count, runs)
+                 : integrateAll<Dim, false, true, Contact, Record>(node, count, runs);
+  return loads ? integrateAll<Dim, true, false, Contact, Record>(node, count, runs)
+               : integrateAll<Dim, false, false, Contact, Record>(node, count, runs);
 }
 
 template <int Dim>
 NodeSums integrateNodes(const NodeIntegrator &node, const Index count, const bool loads,
                         const bool clear, const DeviceView<Index *[2]> *runs)
 {
-  // contact forces have their own field, read only where there is one
-  if (node.f_contact.extent(0) != 0)
-    return integrateWithContact<Dim, true>(node, count, loads, clear, runs);
-  return integrateWithContact<Dim, false>(node, count, loads, clear, runs);
+  // contact forces have their own field, read only where there is one; reactions are
+  // recorded only where the deck has velocity constraints
+  const bool contact = node.f_contact.extent(0) != 0, record = node.reaction.extent(0) != 0;
+  if (contact)
+    return record ? integrateWithContact<Dim, true, true>(node, count, loads, clear, runs)
+                  : integrateWithContact<Dim, true, false>(node, count, loads, clear, runs);
+  return record ? integrateWithContact<Dim, false, true>(node, count, loads, clear, runs)
+                : integrateWithContact<Dim, false, false>(node, count, loads, clear, runs);
 }
 
 } // namespace

@@ -86,8 +86,8 @@ TEST(SlideLineFriction, SlidesWithCoulombAccelerationAboveTheFrictionAngle)
   const Real th = 30 * M_PI / 180, mu = 0.3;
   const Slide r = run(inclineDeck(30, "mu_static: 0.3"));
   const Real a = r.v_end / r.t_end, exact = kG * (std::sin(th) - mu * std::cos(th));
-  std::printf("[incline 30 deg, mu 0.3] a = %.5f m/s^2, g(sin - mu cos) = %.5f (%+.2e)\n", a,
-              exact, a / exact - 1);
+  std::printf("[incline 30 deg, mu 0.3] a = %.5f m/s^2, g(sin - mu cos) = %.5f (%+.2e)\n", a, exact,
+              a / exact - 1);
   EXPECT_NEAR(a / exact, 1.0, 0.01);
 }
 
