@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Whole-run cost of scene decks: each deck at each thread count, interleaved round after round
-(the host's speed drifts; interleaving spreads the drift over all variants), with bound threads.
-Prints the median wall time of the cycle, its spread, and the contact share (steps 3, 4, 8, 9 of
-the cycle's step timers) per deck and thread count.
+"""Whole-run cost of scene decks: each deck at each thread count (and with each binary),
+interleaved round after round (the host's speed drifts; interleaving spreads the drift over all
+variants), with bound threads. Prints the median wall time of the cycle, its spread, and the
+contact share (steps 3, 4, 8, 9 of the cycle's step timers) per binary, deck and thread count.
 
-    perf/scene_cost.py [--rounds 5] [--threads 1 2] [--bin build/bin/scpdyn] DECK...
+    perf/scene_cost.py [--rounds 5] [--threads 1 2] [--bin BIN [--bin OTHER]] DECK...
 
 Runs go to a temporary directory; only the summaries are read.
 """
@@ -36,22 +36,28 @@ def main():
     ap.add_argument("decks", nargs="+")
     ap.add_argument("--rounds", type=int, default=5)
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
-    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "bin", "scpdyn"))
+    ap.add_argument("--bin", action="append", help="scpdyn binaries to compare "
+                    "(default build/bin/scpdyn)")
     a = ap.parse_args()
+    bins = a.bin or [os.path.join(ROOT, "build", "bin", "scpdyn")]
     results = {}
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(a.rounds):
             for deck in a.decks:
                 for t in a.threads:
-                    out = os.path.join(tmp, f"{os.path.basename(deck)}.{t}")
-                    results.setdefault((deck, t), []).append(run_once(a.bin, deck, t, out))
+                    for b, binary in enumerate(bins):
+                        out = os.path.join(tmp, f"{os.path.basename(deck)}.{t}.{b}")
+                        results.setdefault((b, deck, t), []).append(
+                            run_once(binary, deck, t, out))
             print(f"round {r + 1}/{a.rounds} done", file=sys.stderr)
-    print(f"{'deck':48s} {'thr':>3s} {'cycles':>6s} {'median s':>9s} {'min-max s':>15s} "
-          f"{'contact':>8s}")
-    for (deck, t), runs in results.items():
+    for b, binary in enumerate(bins):
+        print(f"bin {b}: {binary}")
+    print(f"{'bin':>3s} {'deck':48s} {'thr':>3s} {'cycles':>6s} {'median s':>9s} "
+          f"{'min-max s':>15s} {'contact':>8s}")
+    for (b, deck, t), runs in results.items():
         walls = [w for w, _, _ in runs]
         share = statistics.median(c for _, c, _ in runs)
-        print(f"{os.path.relpath(deck, ROOT):48s} {t:3d} {runs[0][2]:6d} "
+        print(f"{b:3d} {os.path.relpath(deck, ROOT):48s} {t:3d} {runs[0][2]:6d} "
               f"{statistics.median(walls):9.3f} {min(walls):7.3f}-{max(walls):7.3f} "
               f"{100 * share:7.1f}%")
 
