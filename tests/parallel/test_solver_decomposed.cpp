@@ -215,6 +215,11 @@ TEST(SolverDecomposed, PatchTest2DMatchesSerial)
   expectInvariant("patch test 2D (slide line)", "patch_2d.yaml", 150);
 }
 
+TEST(SolverDecomposed, FrictionalSlideLineIncline2DMatchesSerial)
+{
+  expectInvariant("incline 2D (frictional slide line)", "incline_friction_2d.yaml", 120);
+}
+
 namespace
 {
 
