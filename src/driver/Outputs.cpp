@@ -1,5 +1,6 @@
 #include "driver/Outputs.hpp"
 
+#include "BuildCommit.hpp"
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
@@ -9,6 +10,7 @@
 #include "parallel/Mpi.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <set>
@@ -587,6 +589,8 @@ void Outputs::finish(const std::string &error)
   const double element_cycles = double(_solver.globalElementCount()) * double(_solver.cycles());
   JsonObject s;
   s.add("title", _solver.deck().title)
+      .add("deck", std::filesystem::absolute(_solver.deck().path).lexically_normal().string())
+      .add("commit", std::string(SCPDYN_COMMIT))
       .add("status", error.empty() ? std::string("completed") : std::string("failed"))
       .add("error", error)
       .add("cycles", _solver.cycles())
@@ -608,6 +612,21 @@ void Outputs::finish(const std::string &error)
       .add("ns_per_element_cycle", element_cycles > 0 ? 1e9 * cycle_time / element_cycles : 0.0);
   if (ranks > 1)
     s.add("decomposition", decomposition);
+  const Solver::SmallestStep &small = _solver.smallestStep();
+  JsonObject dt_min;
+  dt_min.add("value", small.dt)
+      .add("cycle", small.cycle)
+      .add("time", small.time)
+      .add("control", small.control);
+  s.add("dt_min", dt_min);
+  const EnergyReport &e = _solver.energies();
+  JsonObject energies;
+  energies.add("kinetic", e.kinetic)
+      .add("internal", e.internal)
+      .add("hourglass", e.hourglass)
+      .add("contact", e.contact)
+      .add("external_work", e.external_work);
+  s.add("energies", energies);
   JsonObject parts; // the values of the `part` field of fields.h5, by name
   for (size_t p = 0; p < _solver.mesh().parts.size(); ++p)
     parts.add(std::to_string(p), _solver.mesh().parts[p].name);

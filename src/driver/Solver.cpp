@@ -52,6 +52,8 @@ void Solver::startCycles()
         _m.contact->firstTimeStep(_m.nodes, _m.elems, elementStep(first, timeStepControls(), comm));
   }
   _dt_next = nextTimeStep(first, timeStepControls(), s, comm);
+  _limits = first;
+  recordNextStep(comm);
   _last_sums = s;
   _kinetic_mid = s.kinetic;
   _initial_energy = 0;
@@ -64,6 +66,12 @@ void Solver::cycle()
   // No shortened last step: a sudden change of dt changes the leapfrog's conserved energy
   // (an artefact in the balance); the run ends on the first cycle at or past the end time.
   _dt = _dt_next;
+  if (_next_step.dt == _dt && _dt < _smallest_step.dt) // the smallest step, now taken
+  {
+    _smallest_step = _next_step;
+    _smallest_step.cycle = _cycle;
+    _smallest_step.time = _time;
+  }
   _gravity = gravityAt(_time);
   _gravity_next = gravityAt(_time + _dt); // what step 12 clears f_ext to
   stepSortIntoBins();                     // 3: cycle begins; contact faces into bins when due
@@ -187,6 +195,7 @@ void Solver::stepUpdateNodes()
     _limits.contact = _m.contact->stableTimeStep(_m.nodes, _m.elems,
                                                  elementStep(_limits, timeStepControls(), comm));
   _dt_next = nextTimeStep(_limits, timeStepControls(), _last_sums, comm);
+  recordNextStep(comm);
   _external_work += _last_sums.external_work;
   _kinetic_mid = _last_sums.kinetic_mid;
   _energy_scale = std::max(_energy_scale, _last_sums.kinetic);
@@ -196,6 +205,22 @@ void Solver::stepUpdateNodes()
     os << "non-finite nodal velocities at cycle " << _cycle << ", time " << _time;
     throw SimulationError(os.str());
   }
+}
+
+void Solver::recordNextStep(MPI_Comm comm)
+{
+  // what sets a step that would be the smallest yet (cycle() books it once it is taken): the
+  // elements' step over all ranks (with the deck's cap), else the contact
+  if (!(_dt_next < _smallest_step.dt))
+    return;
+  const TimeStepControls ctl = timeStepControls();
+  Real element = cappedElementStep(_limits, ctl);
+  if (comm != MPI_COMM_NULL)
+    MPI_Allreduce(MPI_IN_PLACE, &element, 1, MPI_DOUBLE, MPI_MIN, comm);
+  _next_step.dt = _dt_next;
+  _next_step.control = _dt_next < element      ? "contact (explicit joint limit 19)"
+                       : element >= ctl.dt_max ? "time.dt_max"
+                                               : "elements (Courant)";
 }
 
 std::string Solver::contactSurfaceOf(Index mesh_element) const

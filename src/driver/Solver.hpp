@@ -62,6 +62,15 @@ public:
   std::array<Real, 3> gravityAt(Real t) const;
   /// \brief The time step of the next cycle (before the first cycle: the first time step).
   Real nextDt() const { return _dt_next; }
+  /// \brief The smallest time step the run has taken, the cycle that took it (0-based; it
+  /// starts at `time`) and what set it.
+  struct SmallestStep
+  {
+    Real dt = 1e300, time = 0;
+    long cycle = -1;
+    std::string control;
+  };
+  const SmallestStep &smallestStep() const { return _smallest_step; }
   /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
   ElementControls elementControls() const
   {
@@ -155,6 +164,8 @@ private:
   Real _time = 0;
   Real _dt = 0;
   Real _dt_next = 0;
+  SmallestStep _smallest_step, _next_step; ///< the smallest step taken; the next one's control
+  void recordNextStep(MPI_Comm comm);
   int _gravity_function = -1;          ///< index into the deck's functions, or -1: constant gravity
   std::array<Real, 3> _gravity;        ///< the gravity of this cycle, g(t^n) [m/s^2]
   std::array<Real, 3> _gravity_next{}; ///< the next cycle's, g(t^n + dt) [m/s^2]

@@ -2,6 +2,7 @@
 // Exit status: 0 done, 1 internal error, 2 input error, 3 the run failed (outputs kept).
 // Under mpirun every rank runs this; the mesh is decomposed over the ranks, rank 0 prints and
 // writes the outputs, and the errors are collective, so all ranks exit with the same status.
+#include "BuildCommit.hpp"
 #include "driver/Solver.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -47,7 +48,7 @@ int main(int argc, char **argv)
     }
     if (!std::strcmp(argv[i], "--version"))
     {
-      std::printf("scpdyn %s\n", SCPDYN_VERSION);
+      std::printf("scpdyn %s (%s)\n", SCPDYN_VERSION, SCPDYN_COMMIT);
       return 0;
     }
   }
