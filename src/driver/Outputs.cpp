@@ -567,7 +567,8 @@ void Outputs::finish(const std::string &error)
       decomposition.add(names[k], st);
     }
   }
-  _fields->close(); // collective in a decomposed run
+  _fields->close();                                       // collective in a decomposed run
+  const EnergyReport final_energies = _solver.energies(); // collective too
   if (!root())
     return;
   _history->close();
@@ -619,7 +620,7 @@ void Outputs::finish(const std::string &error)
       .add("time", small.time)
       .add("control", small.control);
   s.add("dt_min", dt_min);
-  const EnergyReport &e = _solver.energies();
+  const EnergyReport &e = final_energies;
   JsonObject energies;
   energies.add("kinetic", e.kinetic)
       .add("internal", e.internal)
