@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 using namespace scpdyn;
 using namespace scpdyn::test;
@@ -18,10 +16,7 @@ namespace
 
 std::string deckText(const std::string &name)
 {
-  std::ifstream in(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + name);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + name);
 }
 
 // A projectile into a wall held along its far side, each with its own contact surface; the

@@ -11,8 +11,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 using namespace scpdyn;
@@ -25,10 +23,7 @@ constexpr Real kH = 0.5e-3; // element size of both decks [m]
 
 std::string paperDeck(const std::string &name)
 {
-  std::ifstream in(std::string(SCPDYN_SOURCE_DIR) + "/inputs/paper/" + name + ".yaml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return test::readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/paper/" + name + ".yaml");
 }
 
 std::string replaced(std::string text, const std::string &from, const std::string &to)
