@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 #include <sys/wait.h>
+#include <unistd.h>
 
 using namespace scpdyn;
 
@@ -77,7 +78,9 @@ std::string runDeck(const std::string &name, const std::string &deck)
 /// Exit status of a command; its stdout and stderr in `out`, `err`.
 int shell(const std::string &cmd, std::string *out, std::string *err)
 {
-  const std::string o = kWork + "/cmd.out", e = kWork + "/cmd.err";
+  // ctest runs each test in a process of its own, several at once: the files are the process's
+  const std::string tag = std::to_string(getpid());
+  const std::string o = kWork + "/cmd" + tag + ".out", e = kWork + "/cmd" + tag + ".err";
   const int rc = std::system((cmd + " > " + o + " 2> " + e).c_str());
   *out = test::readText(o);
   *err = test::readText(e);
@@ -119,7 +122,7 @@ struct Check
 Check independent(const std::string &dir, const std::string &field, const std::string &png,
                   const std::string &times)
 {
-  const std::string script = kWork + "/check_range.py";
+  const std::string script = kWork + "/check_range" + std::to_string(getpid()) + ".py";
   std::ofstream(script) << kCheckScript;
   std::string out, err;
   EXPECT_EQ(shell("/usr/bin/python3 " + script + " " + dir + " " + field + " " + png + " " + times,
