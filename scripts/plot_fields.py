@@ -16,7 +16,8 @@ frame, combined into one PNG.
   --field NAME   default pressure; a wrong name lists the fields the run has
   --times T ...  default: the frames nearest 1/3, 2/3 and all of the written time
   --edges        mesh edges as thin lines
-  --contacts     the contact points (contacts.h5) of the same frame as dots
+  --contacts     the contact points (contacts.h5) of the same frame as dots; failed sleepy
+                 joints as larger magenta dots
   --mirror       2D: mirror a quarter model about x = 0 and y = 0 (symmetry planes)
   --out PNG      default OUTDIR/fields_<field>.png
 
@@ -140,20 +141,32 @@ class Run:
                              f"({lo:g} to {hi:g} s, {len(self.times)} frames)")
         return int(np.argmin(np.abs(self.times - t)))
 
-    def contact_points(self, k):
-        """(n, 3) contact points of the contact frame at field frame k's time (none: (0, 3))."""
+    def contact_frame(self, k):
+        """The contact frame at field frame k's time, or None (none written then, or no CPs)."""
         if self.contacts is None:
-            return np.zeros((0, 3))
+            return None
         frames = self.contacts["frames"]
         times = {key: float(frames[key].attrs["time"]) for key in frames}
         key = min(times, key=lambda q: abs(times[q] - self.times[k]))
         if abs(times[key] - self.times[k]) > 1e-12 * max(1.0, abs(self.times[k])):
-            return np.zeros((0, 3))
-        pts = frames[key]["points"][()]
+            return None
+        frame = frames[key]
         # a frame without CPs holds one placeholder point whose values are all -1
-        if len(pts) == 1 and frames[key]["point_data/area"][0] == -1:
-            return np.zeros((0, 3))
-        return pts
+        if len(frame["points"]) == 1 and frame["point_data/area"][0] == -1:
+            return None
+        return frame
+
+    def contact_points(self, k):
+        """(n, 3) contact points of the contact frame at field frame k's time (none: (0, 3))."""
+        frame = self.contact_frame(k)
+        return np.zeros((0, 3)) if frame is None else frame["points"][()]
+
+    def contact_failed(self, k):
+        """Per contact point of contact_points(k): True for a sleepy CP that has failed."""
+        frame = self.contact_frame(k)
+        if frame is None or "point_data/failed" not in frame:
+            return np.zeros(len(self.contact_points(k)), dtype=bool)
+        return frame["point_data/failed"][()] > 0.5
 
 
 def von_mises(s):
@@ -248,11 +261,16 @@ def draw_panel(ax, run, k, name=None, centre="cell", values=None, norm=None, cma
                                              linewidths=lw))
     if contacts:
         pts = run.contact_points(k)[:, :2] / length
+        failed = run.contact_failed(k)
         if len(pts):
+            failed = np.concatenate([failed for s in signs])
             pts = np.vstack([pts * s for s in signs])
             # white shows on the dark low end of turbo, red among the bare mesh's black edges
-            ax.scatter(pts[:, 0], pts[:, 1], s=2.0 if name is None else 1.0,
+            ax.scatter(pts[~failed, 0], pts[~failed, 1], s=2.0 if name is None else 1.0,
                        c="r" if name is None else "w", marker=".",
+                       linewidths=0)
+            # failed sleepy joints: larger, in a colour of their own
+            ax.scatter(pts[failed, 0], pts[failed, 1], s=6.0, c="m", marker="o",
                        linewidths=0)
     ax.set_aspect("equal")
     ax.autoscale_view()

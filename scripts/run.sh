@@ -32,8 +32,11 @@ OUT="$(sed -n 's/^scpdyn: done, .*; results in //p' "$log" | tail -n 1)"
 /usr/bin/python3 "$ROOT/scripts/plot_gauges.py" "$OUT" >&2 || echo "scripts/run.sh: plotting failed" >&2
 # the pressure on the deformed mesh; exit status 2 (no fields.h5, no pressure field, no pvbatch
 # for a 3D run) means there is nothing to draw: no picture, no message
+# (with contact: its points on it, failed sleepy joints in magenta)
 rc=0
-picture="$(/usr/bin/python3 "$ROOT/scripts/plot_fields.py" "$OUT" 2>"$log")" || rc=$?
+with_contacts=()
+[ -f "$OUT/contacts.h5" ] && with_contacts=(--contacts)
+picture="$(/usr/bin/python3 "$ROOT/scripts/plot_fields.py" "$OUT" "${with_contacts[@]}" 2>"$log")" || rc=$?
 picture="$(sed -n 's/^plot_fields: wrote \(.*\) field .*/\1/p' <<<"$picture")"
 [ "$rc" -eq 0 ] || [ "$rc" -eq 2 ] || { cat "$log" >&2; echo "scripts/run.sh: drawing the fields failed" >&2; }
 echo "results: $OUT (fields.xmf for ParaView, history.csv, gauges.csv, summary.json)"

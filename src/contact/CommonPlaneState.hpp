@@ -38,6 +38,16 @@ enum class ContactOption : int
   Sleepy = 4     ///< (D15): sticky until `failed`, then slide line with residual friction
 };
 
+/// \brief What switches a sleepy CP from tied to sliding (11.4): a failure measure of the elements
+/// behind its faces, or the time.
+enum class FailureMeasure : int
+{
+  None = 0,
+  PlasticStrain = 1, ///< equivalent plastic strain of the element [-]
+  Damage = 2,        ///< damage D of a geomaterial element [-] (0 for other models)
+  Time = 3           ///< the time [s]: a switch forced at a prescribed moment
+};
+
 /// \brief How the CP force is spread over the face nodes (section 8).
 enum class DistributionRule : int
 {
@@ -98,6 +108,10 @@ struct JointParams
   Real mu_s = 0;  ///< static coefficient [-]
   Real mu_k = 0;  ///< kinetic coefficient [-]
   Real mu_dc = 0; ///< decay coefficient [s/m]
+  // sleepy: the switch to sliding (11.4)
+  FailureMeasure failure_measure = FailureMeasure::None;
+  Real failure_threshold = 0; ///< the measure's value that fails the tie [its unit]
+  bool failure_both = false;  ///< the elements of both faces must fail, not either
 };
 
 /// \brief Fill the derived defaults (Emax = 1e4*E0, sigma_t = C/tan(phi0), or 0 when phi0 = 0).
@@ -112,7 +126,8 @@ KOKKOS_INLINE_FUNCTION JointParams resolveParams(JointParams p)
 
 /// \brief Parameters of a CP whose faces carry different BCs (section 3.6): arithmetic mean of
 /// every numerical joint parameter (resolved first, so derived defaults are averaged as values);
-/// option and flags from the BC with the smaller id; C_safe the smaller of the two.
+/// option, flags and the sleepy switch (measure, threshold, sides) from the BC with
+/// the smaller id; C_safe the smaller of the two.
 ///
 /// Angles are stored in radians: their mean equals the mean in degrees converted. The result is
 /// symmetric in its arguments, so both ranks of a cross-rank CP get bitwise-identical values.

@@ -31,6 +31,11 @@ using namespace tie_rows;
 namespace
 {
 
+/// The growth of the projected gradient over its best that stops the solve (divergence guard in
+/// boundSolve): CG's residual is not monotone, but on a consistent system it does not climb
+/// three orders above its lowest value.
+constexpr Real kDivergedGrowth = 1e3;
+
 KOKKOS_INLINE_FUNCTION Real along(const CommonPlaneData &cp, Index p, const Real v[3])
 {
   return v[0] * cp.normal(p, 0) + v[1] * cp.normal(p, 1) + v[2] * cp.normal(p, 2);
@@ -319,6 +324,13 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
   // as the tie solve: 1e-10 of the projected gradient at X = 0, or round-off of v*
   const Real stop = contact_math::max(1e-20 * cold, 1e-26 * scale);
   const int cap = 20 * _passes;
+  // Divergence guard: rows the ties already fix (a failed sleepy CP between node pairs its tied
+  // neighbours hold) with a target that is not quite theirs (its gap) make the system
+  // inconsistent. The projected gradient then falls to a floor and grows again, without bound,
+  // as the iterates leave the operator's range; the solve stops there and takes its best iterate.
+  auto best_x = _cg_best;
+  Real best = n[0] + n[1];
+  Kokkos::deep_copy(best_x, X);
   int it = 0;
   for (; it < cap && n[0] + n[1] > stop; ++it)
   {
@@ -426,6 +438,16 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
       freeDirection();
     }
     norms(n);
+    if (n[0] + n[1] < best)
+    {
+      best = n[0] + n[1];
+      Kokkos::deep_copy(best_x, X);
+    }
+    else if (n[0] + n[1] > kDivergedGrowth * best)
+    {
+      Kokkos::deep_copy(X, best_x);
+      break;
+    }
   }
 
   // back to forces; a slide line without force this cycle is not tied

@@ -174,6 +174,7 @@ void ContactSystem::allocateTieRows()
   _cg_w = VectorView("cg_w", n);
   _cg_s = VectorView("cg_s", n);
   _cg_t = VectorView("cg_t", n);
+  _cg_best = VectorView("cg_best", n);
   _tie_mode = IndexView("tie_mode", n);
   _tie.w1 = DeviceView<Real *[kMaxFaceNodes]>("tie_w1", n);
   _tie.w2 = DeviceView<Real *[kMaxFaceNodes]>("tie_w2", n);
@@ -216,7 +217,6 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
       "scpdyn::contact::tieTargets", Kokkos::RangePolicy<ExecSpace>(0, rows),
       KOKKOS_LAMBDA(const Index c) {
         const Index p = c / Q;
-        const ContactOption o = cp.params(p).option;
         Real V1[3], V2[3], Vn = 0;
         rowVelocity(F, cp, tw, c, p, 0, vstar, V1);
         rowVelocity(F, cp, tw, c, p, 1, vstar, V2);
@@ -225,8 +225,8 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         const Real gap = cp.state(p).u < 0 ? -cp.state(p).u : 0.0;
         const Real excess = Vn - gap / dt;
         const bool active = cp.status(p) != CpInactive;
-        const bool sticky_row = o == ContactOption::Sticky;
-        const bool slide_row = o == ContactOption::SlideLine && c % Q == 0; // at the POC
+        const bool sticky_row = isTie(cp.params(p), cp.state(p));
+        const bool slide_row = isSlide(cp.params(p), cp.state(p)) && c % Q == 0; // at the POC
         mode(c) = !active ? TieNone : sticky_row ? TieFull : slide_row ? TieNormal : TieNone;
         for (int d = 0; d < 3; ++d) // the scale of the solve's round-off stop (tieSolve)
           W(c, d) = contact_math::abs(V1[d]) + contact_math::abs(V2[d]);
@@ -235,11 +235,12 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
       });
   // ties alone: one linear system; with slide lines, their "no tension" makes it a
   // bound-constrained one (ContactBoundSolve.cpp)
-  if (_has_slide)
+  const bool sliding = _has_slide || (_has_sleepy && failedCount() > 0); // collective
+  if (sliding)
     boundSolve(nodes, dt);
   else
     tieSolve(nodes, dt);
-  if (_has_friction) // the slide lines' Coulomb friction, on their normal forces
+  if (_has_friction && sliding) // the slide lines' Coulomb friction, on their normal forces
     slideFriction(nodes, dt);
   // apply the forces: contact force, v*, CP totals
   tieScatter(nodes, dt, X);

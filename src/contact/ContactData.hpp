@@ -32,6 +32,8 @@ struct ContactFaceData
   DeviceView<long *> key; ///< global face key (3.5)
   IndexView ghost;        ///< 1 for a ghost face: no force is applied to its nodes here
   RealView density;       ///< ghost faces: density of the element behind [kg/m^3] (19)
+  /// sleepy switch (11.4): plastic strain and damage of the element behind, every cycle
+  DeviceView<Real *[2]> failure;
 };
 
 /// \brief Allocates the per-face Views of `F` for `n` faces and sets `F.count`; `params` and
@@ -49,6 +51,7 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
   F.key = DeviceView<long *>("contact_face_key", n);
   F.ghost = IndexView("contact_face_ghost", n);
   F.density = RealView("contact_face_density", n);
+  F.failure = DeviceView<Real *[2]>("contact_face_failure", n);
 }
 
 /// \brief Host mirrors of the per-face Views filled at set-up (density excepted: ghost

@@ -3,6 +3,7 @@
 // written afterwards hold the last finite state.
 #include "contact/ContactChecks.hpp"
 #include "contact/ContactKernels.hpp"
+#include "contact/JointConstraints.hpp"
 #include "contact/ContactSystem.hpp"
 
 #include <cmath>
@@ -89,14 +90,16 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
       KOKKOS_LAMBDA(const Index p) {
         const JointParams &P = cp.params(p);
         cp_work(p) = 0;
-        if (P.option == ContactOption::Sticky || P.option == ContactOption::Sleepy)
+        if (isTie(P, cp.state(p)))
           return; // a tie does no work: its booked work is round-off and lag of either sign
         Real V1[3], V2[3], w = 0;
         cpVelocities(F, cp, p, P.velocity, v, V1, V2);
         const CpState &o = before(p);
+        // a sleepy CP that fails this cycle: its last impulse was a tie's, which does no work
+        const Real booked = isTie(P, o) ? 0.0 : 1.0;
         for (int d = 0; d < 3; ++d)
         {
-          const Real I_old = (o.Fn * o.n_old[d] + o.Fs[d]) * dt_prev;
+          const Real I_old = booked * (o.Fn * o.n_old[d] + o.Fs[d]) * dt_prev;
           w += 0.5 * (V1[d] - V2[d]) * (cp.force(p, d) * dt + I_old);
         }
         cp_work(p) = w;
@@ -119,12 +122,12 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   // slide lines: their net work, and the kinetic energy of the contact nodes, the scale of the
   // leapfrog lag of either sign that persistent contact books (a quasi-static patch: 1e-20 J)
   Real slide_work = 0, ke_contact = 0;
-  if (_has_slide)
+  if (_has_slide || _has_sleepy)
   {
     Kokkos::parallel_reduce(
         "scpdyn::contact::slideWorkSum", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
         KOKKOS_LAMBDA(const Index p, Real &sum) {
-          if (ownsPlane(F, cp, p) && cp.params(p).option == ContactOption::SlideLine)
+          if (ownsPlane(F, cp, p) && isSlide(cp.params(p), cp.state(p)))
             sum += cp_work(p);
         },
         slide_work);
@@ -149,7 +152,7 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   const Real sw = _slide_work + sums[4];
   const Real sw_peak = std::max(_slide_work_peak, sw);
   const bool slide_created =
-      _has_slide && contactCreatedEnergy(sw, sw_peak + kSlideLag * sums[5], 0, 0);
+      (_has_slide || _has_sleepy) && contactCreatedEnergy(sw, sw_peak + kSlideLag * sums[5], 0, 0);
   const bool created = bad >= cp.count && sums[3] > 0 &&
                        (contactCreatedEnergy(jw, jw_peak, stored_peak, jw_gross) || slide_created);
   if (created)

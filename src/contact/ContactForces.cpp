@@ -113,7 +113,7 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
         if (isConstraint(P.option))
         { // forces come from the correction passes, at the tie points (2D sticky) or the POC
           Real tw1[2][kMaxFaceNodes] = {}, tw2[2][kMaxFaceNodes] = {};
-          const bool two_points = P.option == ContactOption::Sticky && dim == 2;
+          const bool two_points = isTie(P, s) && dim == 2;
           if (two_points)
             tieWeights2D(x1, x2, g, tw1, tw2);
           for (int q = 0; q < Q; ++q)
@@ -197,6 +197,8 @@ ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const Bound
   if (_state_before.extent(0) != _cp.state.extent(0))
     _state_before = DeviceView<CpState *>("cp_state_before", _cp.state.extent(0));
   Kokkos::deep_copy(_state_before, _cp.state);
+  if (_has_sleepy) // after the copy: the energy check books a CP failing now as a tie before
+    releaseSleepy(time);
   if (_cp.count > 0 || decomposed)
   {
     if (_has_constraints)

@@ -11,6 +11,7 @@
 // The normal force is solved jointly; the friction by Jacobi passes of these per-CP forces on the
 // total so far: a sticking interface stops to within what the passes leave, not to round-off.
 #include "contact/ContactSystem.hpp"
+#include "contact/JointConstraints.hpp"
 #include "contact/TieRows.hpp"
 
 namespace scpdyn
@@ -28,8 +29,7 @@ constexpr int kFrictionPasses = 4;
 
 KOKKOS_INLINE_FUNCTION bool hasFriction(const CommonPlaneData &cp, Index p, int mode)
 {
-  return mode == TieNormal && cp.params(p).option == ContactOption::SlideLine &&
-         cp.params(p).mu_s > 0;
+  return mode == TieNormal && isSlide(cp.params(p), cp.state(p)) && cp.params(p).mu_s > 0;
 }
 
 } // namespace

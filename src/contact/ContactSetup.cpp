@@ -57,6 +57,7 @@ JointParams jointParamsOf(const SurfaceSpec &s, int bc_id)
   p.C_safe = std::isinf(s.C_safe) ? 1e300 : s.C_safe;
   p.option = s.option == "slide_line" ? ContactOption::SlideLine
              : s.option == "sticky"   ? ContactOption::Sticky
+             : s.option == "sleepy"   ? ContactOption::Sleepy
              : s.option == "explicit" ? ContactOption::Explicit
                                       : ContactOption::Implicit;
   p.dilation_update =
@@ -71,6 +72,12 @@ JointParams jointParamsOf(const SurfaceSpec &s, int bc_id)
   p.mu_s = s.mu_static;
   p.mu_k = s.mu_kinetic < 0 ? s.mu_static : s.mu_kinetic;
   p.mu_dc = s.mu_decay;
+  p.failure_measure = s.failure_measure == "plastic_strain" ? FailureMeasure::PlasticStrain
+                      : s.failure_measure == "damage"       ? FailureMeasure::Damage
+                      : s.failure_measure == "time"         ? FailureMeasure::Time
+                                                            : FailureMeasure::None;
+  p.failure_threshold = s.failure_threshold;
+  p.failure_both = s.failure_sides == "both";
   return resolveParams(p);
 }
 

@@ -29,6 +29,8 @@ struct ContactMeshInput
   const std::vector<Index> *host_to_device_element = nullptr;
   NodeFields nodes;    ///< mass and velocity-BC flags are read
   ElementFields elems; ///< element masses are read
+  /// per material: the history slot of its damage (historyNames), or -1; the sleepy switch
+  std::vector<int> damage_slot;
   /// Decomposed runs: global id of every mesh element (face keys are global), and the global
   /// sum of a count (a surface must select faces on some rank, not on every one).
   const std::vector<Index> *global_element = nullptr;

@@ -79,13 +79,18 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   for (size_t s = 0; s < deck.contact.surfaces.size(); ++s)
   {
     const std::string &o = deck.contact.surfaces[s].option;
-    _has_constraints = _has_constraints || o == "sticky" || o == "slide_line";
+    const SurfaceSpec &spec = deck.contact.surfaces[s];
+    _has_constraints = _has_constraints || o == "sticky" || o == "slide_line" || o == "sleepy";
     _has_explicit = _has_explicit || o == "explicit";
-    _has_sticky = _has_sticky || o == "sticky";
     _has_slide = _has_slide || o == "slide_line";
-    _has_friction = _has_friction || (o == "slide_line" && deck.contact.surfaces[s].mu_static > 0);
+    _has_sleepy = _has_sleepy || o == "sleepy";
+    _failure_from_elements =
+        _failure_from_elements || (o == "sleepy" && spec.failure_measure != "time");
+    _has_friction = _has_friction || ((o == "slide_line" || o == "sleepy") && spec.mu_static > 0);
     _surface_labels.push_back("'" + deck.contact.surfaces[s].name + "' (option " + o + ")");
   }
+  _damage_slot = toDevice(std::vector<Index>(in.damage_slot.begin(), in.damage_slot.end()),
+                          "contact_damage_slot");
   const size_t n = size_t(in.nodes.count);
   _vstar = VectorView("contact_vstar", n);
   _dv = VectorView("contact_dv", n);
@@ -348,12 +353,8 @@ std::vector<Real> ContactSystem::ownFaceDensity(const ElementFields &elements) c
 
 void ContactSystem::setGhostDensity(const std::vector<Real> &density)
 {
-  auto h = Kokkos::create_mirror_view(_faces.density);
-  for (Index f = 0; f < _faces.count; ++f)
-  {
-    const Index g = _ghost_of_face[size_t(f)];
-    h(f) = g >= 0 ? density[size_t(g)] : 0.0;
-  }
+  auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.density);
+  eachGhostFace([&](Index f, size_t g) { h(f) = density[g]; });
   Kokkos::deep_copy(_faces.density, h);
 }
 
@@ -383,6 +384,7 @@ ContactPointsHost ContactSystem::points() const
     h.closure.push_back(s.u);
     h.slip.push_back(s.usp * params(p).a);
     h.state.push_back(status(p));
+    h.failed.push_back(params(p).option == ContactOption::Sleepy && s.failed ? 1.0 : 0.0);
     h.key1.push_back(double(_info[size_t(f1(p))].key));
     h.key2.push_back(double(_info[size_t(f2(p))].key));
   }

@@ -40,7 +40,14 @@ struct ContactPointsHost
   std::vector<double> closure;      ///< u [m]
   std::vector<double> slip;         ///< plastic slip usp*a [m]
   std::vector<double> state;        ///< CpStatus
-  std::vector<double> key1, key2;   ///< global face keys
+  std::vector<double> failed;       ///< sleepy CPs: 1 once switched to sliding, else 0
+  std::vector<double> key1, key2;   ///< global face keys (last: gatherPoints sorts on them)
+
+  /// \brief The per-CP scalars, in output order.
+  std::vector<std::vector<double> *> scalars()
+  {
+    return {&area, &normal_force, &shear_force, &closure, &slip, &state, &failed, &key1, &key2};
+  }
 };
 
 /// \brief Why the contact stopped a run; the Solver turns it into a SimulationError.
@@ -106,6 +113,17 @@ public:
   /// \brief Step 8: the ghost faces' element densities, in the order of setGhostFaces.
   void setGhostDensity(const std::vector<Real> &density);
   bool hasExplicit() const { return _has_explicit; }
+  /// \brief Whether a sleepy surface switches on a failure measure of its elements (not the
+  /// time): its faces then need the measures every cycle (step 8 for the ghost faces).
+  bool needsFailureMeasures() const { return _failure_from_elements; }
+  /// \brief Before step 9: the failure measures of the elements behind this rank's faces.
+  void updateFailureMeasures(const ElementFields &elements);
+  /// \brief Failure measure `column` (0 plastic strain, 1 damage) behind each own face.
+  std::vector<Real> ownFaceFailure(const ElementFields &elements, int column) const;
+  /// \brief Step 8: the ghost faces' failure measure `column`, in the order of setGhostFaces.
+  void setGhostFailure(int column, const std::vector<Real> &measure);
+  /// \brief Sleepy CPs that have switched to sliding, over all ranks (collective).
+  Index failedCount() const;
   /// \brief Per ghost face (order of setGhostFaces): 1 if a live CP uses it. Until the next
   /// search only these need fresh ghost data.
   std::vector<char> ghostFacesInPlanes() const;
@@ -132,6 +150,7 @@ public:
 
 private:
   void detect(const NodeFields &nodes, Real dt);
+  void releaseSleepy(Real time);
   void computeVstar(const NodeFields &nodes, const BoundaryConditions &bc, Real dt);
   void jointForces(const NodeFields &nodes, Real dt);
   void constraintPasses(const NodeFields &nodes, Real dt);
@@ -146,6 +165,14 @@ private:
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
   void resizeNodeArrays(size_t n);
   Real globalSum(Real local) const;
+  /// fn(face, its index among the ghosts of setGhostFaces) for every ghost face
+  template <class Fn>
+  void eachGhostFace(Fn &&fn) const
+  {
+    for (Index f = 0; f < _faces.count; ++f)
+      if (_ghost_of_face[size_t(f)] >= 0)
+        fn(f, size_t(_ghost_of_face[size_t(f)]));
+  }
 
   int _dim = 2;
   bool _axisym = false;
@@ -165,12 +192,16 @@ private:
   FaceBins _bins;
   long _binned_cycle = -1;
   bool _has_constraints = false, _has_explicit = false;
-  bool _has_sticky = false, _has_slide = false, _has_friction = false;
+  bool _has_slide = false, _has_friction = false;
+  bool _has_sleepy = false;            ///< a sleepy surface: its CPs switch (releaseSleepy)
+  bool _failure_from_elements = false; ///< ... on a measure of their elements, not the time
+  IndexView _damage_slot;              ///< per material: its history slot of damage, or -1
   VectorView _share; ///< per node (component 0): friction rows on it (ContactFriction.cpp)
   VectorView _cg_x, _cg_r, _cg_p, _cg_z, _cg_ap, _cg_b; ///< conjugate-gradient vectors of the ties
   VectorView _cg_w;    ///< per tie row: |V1| + |V2| of v*, the scale of the solve's round-off stop
   VectorView _cg_s;    ///< per tie row: D^(-1/2), the bound solve's scaling
   VectorView _cg_t;    ///< per tie row: scratch of the bound solve
+  VectorView _cg_best; ///< per tie row: the bound solve's best iterate (its divergence guard)
   IndexView _tie_mode; ///< per tie row: which velocity constraint it imposes this cycle
   TieWeights _tie;     ///< per tie row: the face weights at its point (step 9, A-D)
   int _tie_points = 1; ///< tie rows per CP: 2 in 2D (tieWeights2D), else 1

@@ -105,6 +105,35 @@ KOKKOS_INLINE_FUNCTION CpStepResult updateSleepy(const JointParams &p, CpState &
   return r;
 }
 
+/// \brief Whether the CP is a tie this cycle: sticky, or sleepy before its switch (11.4).
+KOKKOS_INLINE_FUNCTION bool isTie(const JointParams &p, const CpState &s)
+{
+  return p.option == ContactOption::Sticky || (p.option == ContactOption::Sleepy && !s.failed);
+}
+
+/// \brief Whether the CP is a slide line this cycle: a slide line, or sleepy after its switch.
+KOKKOS_INLINE_FUNCTION bool isSlide(const JointParams &p, const CpState &s)
+{
+  return p.option == ContactOption::SlideLine || (p.option == ContactOption::Sleepy && s.failed);
+}
+
+/// \brief The sleepy switch (11.4): whether the failure measures m1, m2 of the elements behind
+/// faces 1 and 2 (or the time t, for FailureMeasure::Time) fail the tie of p: either element at
+/// or past the threshold, or both with `failure_both`.
+KOKKOS_INLINE_FUNCTION bool sleepyFails(const JointParams &p, Real m1, Real m2, Real t)
+{
+  using namespace contact_math;
+  switch (p.failure_measure)
+  {
+  case FailureMeasure::None:
+    return false;
+  case FailureMeasure::Time:
+    return t >= p.failure_threshold;
+  default:
+    return (p.failure_both ? min(m1, m2) : max(m1, m2)) >= p.failure_threshold;
+  }
+}
+
 /// \brief One active CP step with the option of p (section 11, Appendix A).
 KOKKOS_INLINE_FUNCTION CpStepResult updateCp(const JointParams &p, CpState &s,
                                              const CpKinematics &k)

@@ -150,6 +150,13 @@ void Solver::stepExchangeGhostFaceData()
     _m.dd->ghosts->gatherFaces(_m.contact->ownFaceDensity(_m.elems), ghost);
     _m.contact->setGhostDensity(ghost);
   }
+  if (_m.contact->needsFailureMeasures()) // the sleepy switch sees both faces' elements
+    for (int column = 0; column < 2; ++column)
+    {
+      std::vector<Real> ghost;
+      _m.dd->ghosts->gatherFaces(_m.contact->ownFaceFailure(_m.elems, column), ghost);
+      _m.contact->setGhostFailure(column, ghost);
+    }
 }
 
 } // namespace scpdyn

@@ -32,11 +32,8 @@ std::vector<double> toVector(const VectorView &v, Index count)
 /// (ascending face keys).
 ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
 {
-  std::vector<std::vector<double> *> fields;
   ContactPointsHost mine = c;
-  for (auto *f : {&mine.area, &mine.normal_force, &mine.shear_force, &mine.closure, &mine.slip,
-                  &mine.state, &mine.key1, &mine.key2})
-    fields.push_back(f);
+  const std::vector<std::vector<double> *> fields = mine.scalars();
   const size_t n = mine.area.size();
   const int width = 3 + int(fields.size());
   std::vector<double> rows;
@@ -64,9 +61,7 @@ ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     return key(a, 0) < key(b, 0) || (key(a, 0) == key(b, 0) && key(a, 1) < key(b, 1));
   });
-  std::vector<std::vector<double> *> out_fields = {
-      &out.area, &out.normal_force, &out.shear_force, &out.closure,
-      &out.slip, &out.state,        &out.key1,        &out.key2};
+  const std::vector<std::vector<double> *> out_fields = out.scalars();
   for (size_t p : order)
   {
     const double *r = &all[p * size_t(width)];
@@ -247,6 +242,8 @@ void Outputs::begin()
   const Deck &deck = _solver.deck();
   const DomainDecomposition *dd = _solver.decomposition();
   _has_contacts = _solver.contact() != nullptr;
+  _has_sleepy = std::any_of(deck.contact.surfaces.begin(), deck.contact.surfaces.end(),
+                            [](const SurfaceSpec &s) { return s.option == "sleepy"; });
   _material_used.assign(_solver.materialParams().size(), 0);
   {
     auto mat = Kokkos::create_mirror_view_and_copy(HostSpace(), _solver.elements().material);
@@ -310,11 +307,22 @@ void Outputs::begin()
   if (_has_contacts)
     _contacts = std::make_unique<PointSetWriter>(_dir, "contacts");
 
-  _history = std::make_unique<CsvWriter>(
-      _dir + "/history.csv",
-      std::vector<std::string>{"time", "cycle", "dt", "kinetic", "internal", "hourglass",
-                               "external_work", "contact", "energy_balance_error", "momentum_x",
-                               "momentum_y", "momentum_z", "contact_dissipation"});
+  std::vector<std::string> history{"time",
+                                   "cycle",
+                                   "dt",
+                                   "kinetic",
+                                   "internal",
+                                   "hourglass",
+                                   "external_work",
+                                   "contact",
+                                   "energy_balance_error",
+                                   "momentum_x",
+                                   "momentum_y",
+                                   "momentum_z",
+                                   "contact_dissipation"};
+  if (_has_sleepy)
+    history.push_back("failed_contacts");
+  _history = std::make_unique<CsvWriter>(_dir + "/history.csv", history);
   std::vector<std::string> columns{"time"};
   for (const auto &g : _solver.gauges())
     columns.push_back(g.column);
@@ -428,6 +436,7 @@ void Outputs::writeContactFrame()
                {"closure", c.closure},
                {"slip", c.slip},
                {"state", c.state},
+               {"failed", c.failed},
                {"face1_key", c.key1},
                {"face2_key", c.key2}};
   if (_contacts)
@@ -446,6 +455,7 @@ void Outputs::writeRows()
   for (Real v : _solver.gaugeValues())
     row.push_back(v);
   const RunHistories::Rows more = _run_histories->rows();
+  const double failed = _has_sleepy ? double(_solver.contact()->failedCount()) : 0.0;
   if (!root())
     return;
   for (auto [writer, values] : {std::make_pair(_rcforc.get(), &more.contact),
@@ -457,9 +467,16 @@ void Outputs::writeRows()
       r.insert(r.end(), values->begin(), values->end());
       writer->row(r);
     }
-  _history->row({_solver.time(), double(_solver.cycles()), _solver.dt(), r.kinetic, r.internal,
-                 r.hourglass, r.external_work, r.contact, r.balance_error, r.momentum[0],
-                 r.momentum[1], r.momentum[2], r.contact_dissipation});
+  std::vector<double> history{_solver.time(),       double(_solver.cycles()),
+                              _solver.dt(),         r.kinetic,
+                              r.internal,           r.hourglass,
+                              r.external_work,      r.contact,
+                              r.balance_error,      r.momentum[0],
+                              r.momentum[1],        r.momentum[2],
+                              r.contact_dissipation};
+  if (_has_sleepy)
+    history.push_back(failed);
+  _history->row(history);
   if (_gauges)
     _gauges->row(row);
 }

@@ -76,6 +76,7 @@ private:
   std::unique_ptr<FieldWriter> _fields;
   std::unique_ptr<PointSetWriter> _contacts; ///< contacts.xmf/h5, with contact surfaces only
   bool _has_contacts = false;
+  bool _has_sleepy = false;        ///< history.csv counts the sleepy CPs that have failed
   std::vector<int> _material_used; ///< per material: used by an element on any rank
   std::unique_ptr<CsvWriter> _history, _gauges;
   std::unique_ptr<RunHistories> _run_histories;

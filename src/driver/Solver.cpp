@@ -109,6 +109,7 @@ void Solver::stepContactForces()
   if (!_m.contact)
     return;
   ScopedStep t(_timers, "09_contact_forces");
+  _m.contact->updateFailureMeasures(_m.elems);
   const ContactFailure f = _m.contact->computeForces(_m.nodes, _m.bc, _dt, _cycle, _time);
   collectiveCheck(f.failed ? f.message : std::string());
   if (_m.dd && _m.contact->searchDue(_cycle) && !_m.contact->searchDue(_cycle + 1))

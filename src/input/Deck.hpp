@@ -174,7 +174,7 @@ struct SurfaceSpec
   std::string name;
   std::string part;     ///< part name or `prefix*` (exactly one of part, face_set is set)
   std::string face_set; ///< face set name
-  std::string option = "implicit"; ///< slide_line | sticky | explicit | implicit
+  std::string option = "implicit"; ///< slide_line | sticky | sleepy | explicit | implicit
   Real a = 0.1;                    ///< aperture [mm]
   Real E0 = 0.05;                  ///< initial normal modulus E0 = Kn a [GPa]
   Real G = 0.05;                   ///< shear modulus G = Ks a [GPa]
@@ -194,10 +194,15 @@ struct SurfaceSpec
   bool traction_history = true;
   bool implicit_shear = true;
   bool brittle_tension = false;
-  // slide_line: Coulomb friction mu = mu_kinetic + (mu_static - mu_kinetic) exp(-mu_decay |v|)
+  // slide_line (and sleepy once failed): Coulomb friction
+  // mu = mu_kinetic + (mu_static - mu_kinetic) exp(-mu_decay |v|)
   Real mu_static = 0;   ///< static coefficient [-]; 0: frictionless
   Real mu_kinetic = -1; ///< kinetic coefficient [-]; < 0: mu_static
   Real mu_decay = 0;    ///< decay coefficient [s/m]
+  // sleepy: tied until the switch, then a slide line
+  std::string failure_measure;          ///< plastic_strain | damage | time
+  Real failure_threshold = -1;          ///< the measure's value that fails the tie
+  std::string failure_sides = "either"; ///< either | both (elements of the two faces)
 };
 
 /// \brief The contact section: no surfaces means no contact.

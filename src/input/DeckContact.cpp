@@ -40,7 +40,10 @@ const std::vector<std::string> kSurfaceKeys = {"name",
                                                "brittle_tension",
                                                "mu_static",
                                                "mu_kinetic",
-                                               "mu_decay"};
+                                               "mu_decay",
+                                               "failure_measure",
+                                               "failure_threshold",
+                                               "failure_sides"};
 
 /// A Table 1 stress or modulus in GPa; values that only make sense in Pa get a unit hint.
 Real readGPa(const YamlMap &m, const std::string &key, Real fallback, bool positive)
@@ -71,14 +74,14 @@ Real readAutoGPa(const YamlMap &m, const std::string &key)
   return readGPa(m, key, -1, false);
 }
 
-/// Coulomb friction of a slide line (LS-DYNA's FS, FD, DC): the joint options have their own
-/// friction (phi0, phi1), the sticky option none.
+/// Coulomb friction of a slide line (LS-DYNA's FS, FD, DC), and of a sleepy surface once it
+/// fails: the joint options have their own friction (phi0, phi1), the sticky option none.
 void parseFriction(const YamlMap &m, SurfaceSpec &s)
 {
   for (const char *key : {"mu_static", "mu_kinetic", "mu_decay"})
-    if (m.has(key) && s.option != "slide_line")
-      m[key].fail("friction coefficients belong to the slide_line option; option '" + s.option +
-                  "' " +
+    if (m.has(key) && s.option != "slide_line" && s.option != "sleepy")
+      m[key].fail("friction coefficients belong to the slide_line and sleepy options; option '" +
+                  s.option + "' " +
                   (s.option == "sticky" ? "does not slip"
                                         : "has the joint law's friction angles phi0 and phi1"));
   auto coefficient = [](Real x) { return x >= 0 && x <= 10; };
@@ -90,8 +93,34 @@ void parseFriction(const YamlMap &m, SurfaceSpec &s)
   s.mu_decay = readReal(m, "mu_decay", s.mu_decay, isNonNegative, ">= 0 (s/m)");
 }
 
-SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool check_sets,
-                         std::map<std::string, int> &seen)
+/// The switch of a sleepy surface (tied until the elements behind its faces fail): which
+/// measure, its threshold, and whether either or both elements must reach it.
+void parseFailure(const YamlMap &m, SurfaceSpec &s, const Deck &deck)
+{
+  for (const char *key : {"failure_measure", "failure_threshold", "failure_sides"})
+    if (m.has(key) && s.option != "sleepy")
+      m[key].fail("belongs to the sleepy option (tied until the material fails), not to option '" +
+                  s.option + "'");
+  if (s.option != "sleepy")
+    return;
+  if (!m.has("failure_measure"))
+    m.missing("failure_measure");
+  if (!m.has("failure_threshold"))
+    m.missing("failure_threshold");
+  s.failure_measure = m.choice("failure_measure", {"plastic_strain", "damage", "time"}, "");
+  s.failure_threshold = readReal(m, "failure_threshold", s.failure_threshold, isNonNegative,
+                                 s.failure_measure == "time" ? ">= 0 (s)" : ">= 0");
+  s.failure_sides = m.choice("failure_sides", {"either", "both"}, s.failure_sides);
+  const bool has_damage =
+      std::any_of(deck.materials.begin(), deck.materials.end(),
+                  [](const MaterialSpec &x) { return x.model == "geomaterial"; });
+  if (s.failure_measure == "damage" && !has_damage)
+    m["failure_measure"].fail("damage is a measure of the geomaterial model, and no material of "
+                              "the deck is one; use plastic_strain, or time");
+}
+
+SurfaceSpec parseSurface(const YamlValue &item, const Deck &deck, const DeckNames &names,
+                         bool check_sets, std::map<std::string, int> &seen)
 {
   const YamlMap m = item.map(kSurfaceKeys);
   SurfaceSpec s;
@@ -108,7 +137,8 @@ SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool che
     if (check_sets)
       checkReference(m["face_set"], s.face_set, "face set", names.face_sets);
   }
-  s.option = m.choice("option", {"slide_line", "sticky", "explicit", "implicit"}, s.option);
+  s.option =
+      m.choice("option", {"slide_line", "sticky", "sleepy", "explicit", "implicit"}, s.option);
   if (m.has("a"))
   {
     s.a = readReal(m, "a", s.a, isPositive, "> 0 (mm)");
@@ -148,6 +178,7 @@ SurfaceSpec parseSurface(const YamlValue &item, const DeckNames &names, bool che
   s.implicit_shear = m.boolean("implicit_shear", s.implicit_shear);
   s.brittle_tension = m.boolean("brittle_tension", s.brittle_tension);
   parseFriction(m, s);
+  parseFailure(m, s, deck);
   return s;
 }
 
@@ -190,7 +221,7 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
   });
   std::map<std::string, int> seen;
   for (const YamlValue &item : c["surfaces"].list(1))
-    spec.surfaces.push_back(parseSurface(item, names, check_sets, seen));
+    spec.surfaces.push_back(parseSurface(item, deck, names, check_sets, seen));
 }
 
 } // namespace input_impl

@@ -200,7 +200,7 @@ void writeContact(YAML::Emitter &out, const ContactSpec &c)
     out << YAML::Key << "traction_history" << YAML::Value << s.traction_history;
     out << YAML::Key << "implicit_shear" << YAML::Value << s.implicit_shear;
     out << YAML::Key << "brittle_tension" << YAML::Value << s.brittle_tension;
-    if (s.option == "slide_line")
+    if (s.option == "slide_line" || s.option == "sleepy")
     {
       out << YAML::Key << "mu_static" << YAML::Value;
       real(out, s.mu_static);
@@ -208,6 +208,13 @@ void writeContact(YAML::Emitter &out, const ContactSpec &c)
       real(out, s.mu_kinetic < 0 ? s.mu_static : s.mu_kinetic);
       out << YAML::Key << "mu_decay" << YAML::Value;
       real(out, s.mu_decay);
+    }
+    if (s.option == "sleepy")
+    {
+      out << YAML::Key << "failure_measure" << YAML::Value << s.failure_measure;
+      out << YAML::Key << "failure_threshold" << YAML::Value;
+      real(out, s.failure_threshold);
+      out << YAML::Key << "failure_sides" << YAML::Value << s.failure_sides;
     }
     out << YAML::EndMap;
   }

@@ -3,9 +3,12 @@
 #include "model/ModelSetup.hpp"
 
 #include "contact/ContactSystem.hpp"
+#include "material/MaterialLibrary.hpp"
 #include "parallel/Decomposition.hpp"
 #include "parallel/GhostFaces.hpp"
 #include "parallel/Mpi.hpp"
+
+#include <algorithm>
 
 namespace scpdyn
 {
@@ -22,6 +25,12 @@ void ModelSetup::setupContact()
   in.host_to_device_element = &_m.host_to_device_element;
   in.nodes = _m.nodes;
   in.elems = _m.elems;
+  for (const MaterialParams &m : _m.materials_host)
+  {
+    const std::vector<std::string> names = historyNames(m);
+    const auto at = std::find(names.begin(), names.end(), "damage");
+    in.damage_slot.push_back(at == names.end() ? -1 : int(at - names.begin()));
+  }
   if (_m.dd)
   {
     in.global_element = &_m.dd->global_element;

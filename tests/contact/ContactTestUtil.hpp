@@ -37,6 +37,39 @@ inline std::string replaced(std::string text, const std::string &what, const std
   return text;
 }
 
+/// The incline of the friction tests: a soft 0.2 x 0.1 m block (4 x 2 quads, c = 100 m/s) on a
+/// fixed 0.8 x 0.1 m base, gravity tilted by theta so the interface is the incline, the block
+/// thrown along it at v0; the contact surfaces are `surfaces` (YAML list items), 0.12 s.
+inline std::string inclineDeck(double theta_deg, const std::string &surfaces, double v0 = 0)
+{
+  const double th = theta_deg * M_PI / 180, g = 9.81;
+  std::string deck = R"(dimension: 2
+geometry: plane_strain
+time: {end: 0.12, courant: 0.5}
+gravity: [GX, GY]
+materials:
+  - {name: soft, model: elastic, density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.25}
+parts:
+  - {name: base, material: soft, mesh: {elements: [8, 2], origin: [0.0, 0.0], size: [0.8, 0.1]}}
+  - name: block
+    material: soft
+    mesh: {elements: [4, 2], origin: [0.2, 0.1], size: [0.2, 0.1]}
+    initial_velocity: [V0, 0.0]
+node_sets:
+  - {name: base_all, part: base}
+boundary_conditions:
+  - {type: velocity, node_set: base_all, component: x, value: 0.0}
+  - {type: velocity, node_set: base_all, component: y, value: 0.0}
+contact:
+  search_interval: 1
+  surfaces:
+SURFACES)";
+  deck = replaced(deck, "GX", std::to_string(g * std::sin(th)));
+  deck = replaced(deck, "GY", std::to_string(-g * std::cos(th)));
+  deck = replaced(deck, "V0", std::to_string(v0));
+  return replaced(deck, "SURFACES", surfaces);
+}
+
 /// Runs a deck given as YAML text in-process; returns the output directory.
 inline std::string runDeck(const std::string &yaml, const std::string &name)
 {

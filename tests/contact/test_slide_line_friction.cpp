@@ -3,7 +3,7 @@
 // A rigid block slides with a = g (sin(theta) - mu cos(theta)) once tan(theta) > mu and stays
 // put otherwise. The block is soft (c = 100 m/s) so 0.12 s takes 530 cycles; gravity applied at
 // once sets it vibrating, which swings its centre of mass by about 1e-4 m/s.
-#include "TestUtil.hpp"
+#include "ContactTestUtil.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,41 +18,13 @@ namespace
 
 constexpr Real kG = 9.81, kBlockMass = 1000 * 0.2 * 0.1; // [m/s^2], [kg per m]
 
-std::string inclineDeck(Real theta_deg, const std::string &friction, Real v0 = 0)
+std::string slideLineIncline(Real theta_deg, const std::string &friction, Real v0 = 0)
 {
-  const Real th = theta_deg * M_PI / 180;
-  std::string deck = R"(dimension: 2
-geometry: plane_strain
-time: {end: 0.12, courant: 0.5}
-gravity: [GX, GY]
-materials:
-  - {name: soft, model: elastic, density: 1000, youngs_modulus: 1.0e7, poisson_ratio: 0.25}
-parts:
-  - {name: base, material: soft, mesh: {elements: [8, 2], origin: [0.0, 0.0], size: [0.8, 0.1]}}
-  - name: block
-    material: soft
-    mesh: {elements: [4, 2], origin: [0.2, 0.1], size: [0.2, 0.1]}
-    initial_velocity: [V0, 0.0]
-node_sets:
-  - {name: base_all, part: base}
-boundary_conditions:
-  - {type: velocity, node_set: base_all, component: x, value: 0.0}
-  - {type: velocity, node_set: base_all, component: y, value: 0.0}
-contact:
-  search_interval: 1
-  surfaces:
-    - {name: base, part: base, option: slide_line, FRICTION}
-    - {name: block, part: block, option: slide_line, FRICTION}
-)";
-  auto put = [&](const std::string &key, const std::string &value) {
-    for (size_t at = deck.find(key); at != std::string::npos; at = deck.find(key))
-      deck.replace(at, key.size(), value);
-  };
-  put("GX", std::to_string(kG * std::sin(th)));
-  put("GY", std::to_string(-kG * std::cos(th)));
-  put("V0", std::to_string(v0));
-  put("FRICTION", friction);
-  return deck;
+  return test::inclineDeck(theta_deg,
+                           "    - {name: base, part: base, option: slide_line, " + friction +
+                               "}\n    - {name: block, part: block, option: slide_line, " +
+                               friction + "}\n",
+                           v0);
 }
 
 struct Slide
@@ -84,7 +56,7 @@ Slide run(const std::string &deck)
 TEST(SlideLineFriction, SlidesWithCoulombAccelerationAboveTheFrictionAngle)
 {
   const Real th = 30 * M_PI / 180, mu = 0.3;
-  const Slide r = run(inclineDeck(30, "mu_static: 0.3"));
+  const Slide r = run(slideLineIncline(30, "mu_static: 0.3"));
   const Real a = r.v_end / r.t_end, exact = kG * (std::sin(th) - mu * std::cos(th));
   std::printf("[incline 30 deg, mu 0.3] a = %.5f m/s^2, g(sin - mu cos) = %.5f (%+.2e)\n", a, exact,
               a / exact - 1);
@@ -97,7 +69,7 @@ TEST(SlideLineFriction, SticksBelowTheFrictionAngle)
   // 24 mm. Loaded at once, the block shifts by 3e-5 m while it settles in its first cycles
   // (bound: 2e-3 of the frictionless slide), then holds: no creep over the second half (2e-4)
   const Real th = 20 * M_PI / 180;
-  const Slide r = run(inclineDeck(20, "mu_static: 0.5"));
+  const Slide r = run(slideLineIncline(20, "mu_static: 0.5"));
   const Real frictionless = 0.5 * kG * std::sin(th) * r.t_end * r.t_end;
   std::printf("[incline 20 deg, mu 0.5] displacement %.3e m, %.3e m at half time (frictionless "
               "%.3e), v at the end %.2e m/s\n",
@@ -113,8 +85,8 @@ TEST(SlideLineFriction, KineticCoefficientRulesOnceSliding)
   // 2e-5 of mu_kinetic 0.3, and the block accelerates at the kinetic rate
   const Real th = 25 * M_PI / 180;
   const std::string friction = "mu_static: 0.7, mu_kinetic: 0.3, mu_decay: 10";
-  const Slide rest = run(inclineDeck(25, friction));
-  const Slide thrown = run(inclineDeck(25, friction, 1.0));
+  const Slide rest = run(slideLineIncline(25, friction));
+  const Slide thrown = run(slideLineIncline(25, friction, 1.0));
   const Real a = (thrown.v_end - 1.0) / thrown.t_end;
   const Real exact = kG * (std::sin(th) - 0.3 * std::cos(th));
   std::printf("[incline 25 deg, mu 0.7 -> 0.3] at rest: displacement %.3e m (%.3e m at half "

@@ -195,6 +195,36 @@ TEST(PlotFields, PressureOfAnImpactWithItsContactPoints)
   EXPECT_LT(hi, 1.3 * 20.0);
 }
 
+// Failed sleepy joints are drawn in a colour of their own (magenta, matplotlib's "m"): the
+// impact deck with its joint sleepy and forced to fail at 3 us, drawn before and after.
+TEST(PlotFields, FailedSleepyJointsInAColourOfTheirOwn)
+{
+  if (!python("numpy, matplotlib, h5py"))
+    GTEST_SKIP() << "numpy, matplotlib or h5py not installed for /usr/bin/python3";
+  std::string deck = kImpactDeck;
+  const std::string slide = "option: slide_line}";
+  deck.replace(deck.find(slide), slide.size(),
+               "option: sleepy, failure_measure: time, failure_threshold: 3.0e-6}");
+  const std::string dir = runDeck("impact_sleepy", deck);
+  const std::string script = kWork + "/magenta" + std::to_string(getpid()) + ".py";
+  std::ofstream(script) << R"(import sys, numpy as np, matplotlib.pyplot as plt
+rgb = plt.imread(sys.argv[1])[:, :, :3].reshape(-1, 3)
+print(int((np.abs(rgb - [0.75, 0.0, 0.75]).max(axis=1) < 0.05).sum()))
+)";
+  auto magenta = [&](const std::string &time) {
+    const std::string png = dir + "/at" + time + ".png";
+    std::string out, err;
+    EXPECT_EQ(plotFields(dir + " --contacts --times " + time + " --out " + png, &out, &err), 0)
+        << out << err;
+    EXPECT_EQ(shell("/usr/bin/python3 " + script + " " + png, &out, &err), 0) << err;
+    return std::atol(out.c_str());
+  };
+  const long before = magenta("2e-6"), after = magenta("4e-6");
+  std::printf("[sleepy picture] magenta pixels: %ld tied, %ld failed\n", before, after);
+  EXPECT_EQ(before, 0) << "no joint has failed at 2 us";
+  EXPECT_GT(after, 50) << "the failed joint's 16 points, a few pixels each";
+}
+
 TEST(PlotFields, BadArgumentsExitTwoNamingThem)
 {
   if (!python("numpy, matplotlib, h5py"))

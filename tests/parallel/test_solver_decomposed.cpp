@@ -22,13 +22,11 @@ namespace
 
 std::string deckText(const std::string &name)
 {
-  std::ifstream in(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + name);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return test::readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + name);
 }
 
-/// One row per cycle: time, dt, energies, momentum, gauges.
+/// One row per cycle: time, dt, energies, momentum, gauges, and with sleepy joints the count of
+/// failed CPs.
 struct Trace
 {
   std::vector<std::string> columns;
@@ -43,6 +41,11 @@ Trace run(const std::string &yaml, const std::string &name, MPI_Comm comm)
                "external_work", "momentum_x", "momentum_y", "momentum_z"};
   for (const auto &g : s.gauges())
     t.columns.push_back(g.column);
+  const bool sleepy =
+      std::any_of(s.deck().contact.surfaces.begin(), s.deck().contact.surfaces.end(),
+                  [](const SurfaceSpec &c) { return c.option == "sleepy"; });
+  if (sleepy)
+    t.columns.push_back("failed_contacts");
   auto row = [&] {
     const EnergyReport e = s.energies();
     std::vector<double> r = {s.time(),      s.dt(),       e.kinetic,       e.internal,
@@ -50,6 +53,8 @@ Trace run(const std::string &yaml, const std::string &name, MPI_Comm comm)
                              e.momentum[1], e.momentum[2]};
     for (Real v : s.gaugeValues())
       r.push_back(v);
+    if (sleepy)
+      r.push_back(Real(s.contact()->failedCount()));
     t.rows.push_back(r);
   };
   row();
@@ -218,6 +223,11 @@ TEST(SolverDecomposed, PatchTest2DMatchesSerial)
 TEST(SolverDecomposed, FrictionalSlideLineIncline2DMatchesSerial)
 {
   expectInvariant("incline 2D (frictional slide line)", "incline_friction_2d.yaml", 120);
+}
+
+TEST(SolverDecomposed, SleepyWall2DSwitchesTheSameJoints)
+{
+  expectInvariant("sleepy wall 2D", "sleepy_wall_2d.yaml", 40);
 }
 
 namespace
