@@ -54,6 +54,9 @@ void Solver::startCycles()
   _dt_next = nextTimeStep(first, timeStepControls(), s, comm);
   _limits = first;
   recordNextStep(comm);
+  _first_step = _next_step;
+  _first_step.cycle = 0;
+  _first_step.time = _time;
   _last_sums = s;
   _kinetic_mid = s.kinetic;
   _initial_energy = 0;

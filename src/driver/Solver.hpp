@@ -71,6 +71,9 @@ public:
     std::string control;
   };
   const SmallestStep &smallestStep() const { return _smallest_step; }
+  /// \brief The first time step (cycle 0, at time 0) and what set it, described as
+  /// smallestStep() describes its step.
+  const SmallestStep &firstStep() const { return _first_step; }
   /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
   ElementControls elementControls() const
   {
@@ -165,6 +168,7 @@ private:
   Real _dt = 0;
   Real _dt_next = 0;
   SmallestStep _smallest_step, _next_step; ///< the smallest step taken; the next one's control
+  SmallestStep _first_step;
   void recordNextStep(MPI_Comm comm);
   int _gravity_function = -1;          ///< index into the deck's functions, or -1: constant gravity
   std::array<Real, 3> _gravity;        ///< the gravity of this cycle, g(t^n) [m/s^2]
