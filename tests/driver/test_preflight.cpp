@@ -4,6 +4,7 @@
 // file's physical groups, the first time step against dt_min, and a two-rank run against the
 // serial one.
 #include "TestUtil.hpp"
+#include "SummaryJson.hpp"
 
 #include <gtest/gtest.h>
 
@@ -44,77 +45,6 @@ std::string runDeck(const std::string &name, const std::string &text, std::strin
             0)
       << err;
   return dir;
-}
-
-/// The keys of the object that starts at `object` (its own, not those of objects inside it),
-/// each with the position of its value.
-std::vector<std::pair<std::string, size_t>> members(const std::string &json, size_t object)
-{
-  std::vector<std::pair<std::string, size_t>> out;
-  if (object >= json.size() || json[object] != '{')
-    return out;
-  int depth = 0;
-  for (size_t k = object; k < json.size(); ++k)
-  {
-    const char c = json[k];
-    if (c == '{' || c == '[')
-      ++depth;
-    else if ((c == '}' || c == ']') && --depth == 0)
-      break;
-    else if (c == '"') // a key or a string value: a key is followed by a colon
-    {
-      const size_t end = json.find('"', k + 1);
-      if (depth == 1 && json.compare(end + 1, 2, ": ") == 0)
-        out.emplace_back(json.substr(k + 1, end - k - 1), end + 3);
-      k = end;
-    }
-  }
-  return out;
-}
-
-/// Position of the value at the path of keys from the top of summary.json, or npos.
-size_t jsonPos(const std::string &json, const std::vector<std::string> &path)
-{
-  size_t at = json.find('{');
-  for (const std::string &key : path)
-  {
-    size_t found = std::string::npos;
-    for (const auto &[k, value] : members(json, at))
-      if (k == key)
-        found = value;
-    if ((at = found) == std::string::npos)
-      break;
-  }
-  return at;
-}
-
-/// The scalar at `path` (a number, or a string without its quotes; "" if missing).
-std::string jsonText(const std::string &json, const std::vector<std::string> &path)
-{
-  size_t at = jsonPos(json, path);
-  if (at == std::string::npos)
-    return "";
-  std::string v = json.substr(at, json.find_first_of(",\n", at) - at);
-  if (v.size() >= 2 && v.front() == '"')
-    v = v.substr(1, v.size() - 2);
-  return v;
-}
-
-double jsonNumber(const std::string &json, const std::vector<std::string> &path)
-{
-  const std::string v = jsonText(json, path);
-  return v.empty() ? NAN : std::stod(v);
-}
-
-/// The keys of the object at `path`, in order.
-std::vector<std::string> jsonKeys(const std::string &json, const std::vector<std::string> &path)
-{
-  const size_t at = jsonPos(json, path);
-  std::vector<std::string> keys;
-  if (at != std::string::npos)
-    for (const auto &m : members(json, at))
-      keys.push_back(m.first);
-  return keys;
 }
 
 /// The lines of the block that start with `prefix`.
@@ -173,11 +103,11 @@ void expectParts(const std::string &summary, const std::string &block,
       v.push_back(key);
       return v;
     };
-    EXPECT_EQ(jsonText(summary, path("material")), p.material);
-    EXPECT_EQ(jsonNumber(summary, path("elements")), double(p.elements));
-    EXPECT_NEAR(jsonNumber(summary, path("mass")), p.mass,
+    EXPECT_EQ(test::jsonText(summary, path("material")), p.material);
+    EXPECT_EQ(test::jsonNumber(summary, path("elements")), double(p.elements));
+    EXPECT_NEAR(test::jsonNumber(summary, path("mass")), p.mass,
                 massTolerance(p.mass, double(p.elements)));
-    EXPECT_TRUE(jsonKeys(summary, path("sub_parts")).empty()) << "a block is one part";
+    EXPECT_TRUE(test::jsonKeys(summary, path("sub_parts")).empty()) << "a block is one part";
     // its line of the block: name, material, elements, mass (to the 6 digits printed)
     const std::vector<std::string> lines = linesStarting(block, "  " + p.name + " ");
     ASSERT_EQ(lines.size(), 1u) << block;
@@ -192,9 +122,9 @@ void expectParts(const std::string &summary, const std::string &block,
     total += p.mass;
     elements += p.elements;
   }
-  EXPECT_NEAR(jsonNumber(summary, {"preflight", "mass"}), total,
+  EXPECT_NEAR(test::jsonNumber(summary, {"preflight", "mass"}), total,
               massTolerance(total, double(elements)));
-  EXPECT_EQ(jsonNumber(summary, {"preflight", "elements"}), double(elements));
+  EXPECT_EQ(test::jsonNumber(summary, {"preflight", "elements"}), double(elements));
 }
 
 } // namespace
@@ -220,7 +150,7 @@ TEST(Preflight, MassPerPartIsDensityTimesVolumeOfItsBlock)
     std::string block;
     const std::string dir = runDeck("mass_" + c.name, c.deck, &block);
     const std::string s = test::readText(dir + "/summary.json");
-    EXPECT_EQ(jsonText(s, {"preflight", "mass_unit"}), c.unit);
+    EXPECT_EQ(test::jsonText(s, {"preflight", "mass_unit"}), c.unit);
     EXPECT_NE(block.find("mass [" + c.unit + "]"), std::string::npos) << block;
     const bool three_d = c.name == "3d";
     expectParts(s, block, {{"a", "ls", three_d ? 32 : 16, c.mass_a}, {"b", "st", 6, c.mass_b}});
@@ -241,24 +171,24 @@ TEST(Preflight, ABrickWallsBricksAreItsSubPartsGroupedWhenMany)
   const std::string s = test::readText(dir + "/summary.json");
   // the mesh parts of the wall: those of the `part` field (summary.json `parts`)
   std::vector<std::string> bricks;
-  for (const std::string &k : jsonKeys(s, {"parts"}))
+  for (const std::string &k : test::jsonKeys(s, {"parts"}))
   {
-    const std::string name = jsonText(s, {"parts", k});
+    const std::string name = test::jsonText(s, {"parts", k});
     if (name.rfind("wall.", 0) == 0)
       bricks.push_back(name);
   }
   ASSERT_GT(bricks.size(), 8u) << "more than the block lists one by one";
-  EXPECT_EQ(jsonKeys(s, {"preflight", "parts", "wall", "sub_parts"}), bricks);
+  EXPECT_EQ(test::jsonKeys(s, {"preflight", "parts", "wall", "sub_parts"}), bricks);
   double mass = 0, elements = 0;
   for (const std::string &b : bricks)
   {
-    mass += jsonNumber(s, {"preflight", "parts", "wall", "sub_parts", b, "mass"});
-    elements += jsonNumber(s, {"preflight", "parts", "wall", "sub_parts", b, "elements"});
+    mass += test::jsonNumber(s, {"preflight", "parts", "wall", "sub_parts", b, "mass"});
+    elements += test::jsonNumber(s, {"preflight", "parts", "wall", "sub_parts", b, "elements"});
   }
-  const double wall_mass = jsonNumber(s, {"preflight", "parts", "wall", "mass"});
+  const double wall_mass = test::jsonNumber(s, {"preflight", "parts", "wall", "mass"});
   EXPECT_NEAR(wall_mass, rho * width * height, massTolerance(rho * width * height, elements));
   EXPECT_NEAR(mass, wall_mass, massTolerance(wall_mass, elements));
-  EXPECT_EQ(jsonNumber(s, {"preflight", "parts", "wall", "elements"}), elements);
+  EXPECT_EQ(test::jsonNumber(s, {"preflight", "parts", "wall", "elements"}), elements);
   // one line for the wall, naming the first and last brick; none of a brick of its own
   const std::vector<std::string> lines = linesStarting(block, "  wall ");
   ASSERT_EQ(lines.size(), 1u) << block;
@@ -276,7 +206,7 @@ TEST(Preflight, ABrickWallsBricksAreItsSubPartsGroupedWhenMany)
       std::regex_replace(deck, std::regex("count: \\[10, 12\\]"), "count: [2, 2]");
   const std::string s_few = test::readText(runDeck("wall_few", few, &block) + "/summary.json");
   const std::vector<std::string> few_bricks =
-      jsonKeys(s_few, {"preflight", "parts", "wall", "sub_parts"});
+      test::jsonKeys(s_few, {"preflight", "parts", "wall", "sub_parts"});
   ASSERT_GT(few_bricks.size(), 1u);
   ASSERT_LE(few_bricks.size(), 8u);
   for (const std::string &b : few_bricks)
@@ -284,7 +214,7 @@ TEST(Preflight, ABrickWallsBricksAreItsSubPartsGroupedWhenMany)
     const std::vector<std::string> brick_lines = linesStarting(block, "    " + b + " ");
     ASSERT_EQ(brick_lines.size(), 1u) << b << "\n" << block;
     const long n =
-        long(jsonNumber(s_few, {"preflight", "parts", "wall", "sub_parts", b, "elements"}));
+        long(test::jsonNumber(s_few, {"preflight", "parts", "wall", "sub_parts", b, "elements"}));
     EXPECT_NE(brick_lines[0].find(" " + std::to_string(n) + " "), std::string::npos)
         << brick_lines[0];
   }
@@ -317,7 +247,7 @@ Physical Surface("rock") = {1}; Physical Surface("fault") = {2};
                            ".msh}}\n";
   std::string block;
   const std::string s = test::readText(runDeck("gmsh_groups", deck, &block) + "/summary.json");
-  EXPECT_EQ(jsonKeys(s, {"preflight", "parts", "m", "sub_parts"}),
+  EXPECT_EQ(test::jsonKeys(s, {"preflight", "parts", "m", "sub_parts"}),
             (std::vector<std::string>{"m.rock", "m.fault"}));
   const struct
   {
@@ -333,8 +263,8 @@ Physical Surface("rock") = {1}; Physical Surface("fault") = {2};
       v.push_back(key);
       return v;
     };
-    EXPECT_EQ(jsonNumber(s, path("elements")), double(g.elements)) << g.name;
-    EXPECT_NEAR(jsonNumber(s, path("mass")), 2600 * g.area,
+    EXPECT_EQ(test::jsonNumber(s, path("elements")), double(g.elements)) << g.name;
+    EXPECT_NEAR(test::jsonNumber(s, path("mass")), 2600 * g.area,
                 massTolerance(2600 * g.area, double(g.elements)))
         << g.name;
     const std::vector<std::string> lines = linesStarting(block, "    " + g.name + " ");
@@ -352,19 +282,21 @@ TEST(Preflight, TheFirstStepIsDtMinWhenNoLaterStepIsSmaller)
   const auto h = test::readCsv(dir + "/history.csv");
   ASSERT_GT(h.at("dt").size(), 2u);
   ASSERT_EQ(h.at("dt")[1], *std::min_element(h.at("dt").begin() + 1, h.at("dt").end()));
-  EXPECT_EQ(jsonText(s, {"dt_min", "cycle"}), "0");
+  EXPECT_EQ(test::jsonText(s, {"dt_min", "cycle"}), "0");
   // the same double, printed the same way (round-trip digits)
-  EXPECT_EQ(jsonText(s, {"preflight", "first_dt", "value"}), jsonText(s, {"dt_min", "value"}));
-  EXPECT_EQ(jsonText(s, {"preflight", "first_dt", "control"}), jsonText(s, {"dt_min", "control"}));
-  EXPECT_EQ(jsonText(s, {"preflight", "first_dt", "control"}), "elements (Courant)");
+  EXPECT_EQ(test::jsonText(s, {"preflight", "first_dt", "value"}),
+            test::jsonText(s, {"dt_min", "value"}));
+  EXPECT_EQ(test::jsonText(s, {"preflight", "first_dt", "control"}),
+            test::jsonText(s, {"dt_min", "control"}));
+  EXPECT_EQ(test::jsonText(s, {"preflight", "first_dt", "control"}), "elements (Courant)");
   // the block's estimate line names it too
   char dt[32];
-  std::snprintf(dt, sizeof dt, "%.3e", jsonNumber(s, {"dt_min", "value"}));
+  std::snprintf(dt, sizeof dt, "%.3e", test::jsonNumber(s, {"dt_min", "value"}));
   EXPECT_NE(block.find("(first dt " + std::string(dt) + " s, set by elements (Courant))"),
             std::string::npos)
       << block;
-  EXPECT_GT(jsonNumber(s, {"preflight", "memory", "resident_bytes"}), 0);
-  EXPECT_EQ(jsonNumber(s, {"preflight", "memory", "ranks"}), 1);
+  EXPECT_GT(test::jsonNumber(s, {"preflight", "memory", "resident_bytes"}), 0);
+  EXPECT_EQ(test::jsonNumber(s, {"preflight", "memory", "ranks"}), 1);
 }
 
 TEST(Preflight, TwoRanksGiveTheSerialMassesAndTheirMemory)
@@ -389,17 +321,18 @@ TEST(Preflight, TwoRanksGiveTheSerialMassesAndTheirMemory)
   EXPECT_EQ(linesStarting(block, "scpdyn: pre-flight").size(), 1u) << "rank 0 prints:\n" << block;
   for (const char *part : {"a", "b"})
   {
-    const double elements = jsonNumber(serial, {"preflight", "parts", part, "elements"});
-    const double mass = jsonNumber(serial, {"preflight", "parts", part, "mass"});
-    EXPECT_EQ(jsonNumber(s, {"preflight", "parts", part, "elements"}), elements) << part;
+    const double elements = test::jsonNumber(serial, {"preflight", "parts", part, "elements"});
+    const double mass = test::jsonNumber(serial, {"preflight", "parts", part, "mass"});
+    EXPECT_EQ(test::jsonNumber(s, {"preflight", "parts", part, "elements"}), elements) << part;
     // the ranks' partial sums add in another order
-    EXPECT_NEAR(jsonNumber(s, {"preflight", "parts", part, "mass"}), mass,
+    EXPECT_NEAR(test::jsonNumber(s, {"preflight", "parts", part, "mass"}), mass,
                 massTolerance(mass, elements))
         << part;
   }
-  EXPECT_EQ(jsonNumber(s, {"preflight", "memory", "ranks"}), 2);
-  const double total = jsonNumber(s, {"preflight", "memory", "resident_bytes"});
-  const double largest = jsonNumber(s, {"preflight", "memory", "resident_bytes_largest_rank"});
+  EXPECT_EQ(test::jsonNumber(s, {"preflight", "memory", "ranks"}), 2);
+  const double total = test::jsonNumber(s, {"preflight", "memory", "resident_bytes"});
+  const double largest =
+      test::jsonNumber(s, {"preflight", "memory", "resident_bytes_largest_rank"});
   EXPECT_GT(largest, 0);
   EXPECT_GT(total, largest) << "the sum of two ranks' memory";
   EXPECT_NE(block.find("over 2 ranks"), std::string::npos) << block;
