@@ -505,6 +505,17 @@ void Outputs::afterCycle()
 
 void Outputs::finish(const std::string &error)
 {
+  finishWith(error.empty() ? "completed" : "failed", error, "");
+}
+
+void Outputs::finishInterrupted(const std::string &signal)
+{
+  finishWith("interrupted", "", signal);
+}
+
+void Outputs::finishWith(const std::string &status, const std::string &error,
+                         const std::string &signal)
+{
   writeFrame();
   writeRows();
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count();
@@ -598,9 +609,11 @@ void Outputs::finish(const std::string &error)
   s.add("title", _solver.deck().title)
       .add("deck", std::filesystem::absolute(_solver.deck().path).lexically_normal().string())
       .add("commit", std::string(SCPDYN_COMMIT))
-      .add("status", error.empty() ? std::string("completed") : std::string("failed"))
-      .add("error", error)
-      .add("cycles", _solver.cycles())
+      .add("status", status)
+      .add("error", error);
+  if (!signal.empty())
+    s.add("interrupted_by", signal);
+  s.add("cycles", _solver.cycles())
       .add("end_time", _solver.time())
       .add("wall_time", wall)
       .add("cycle_time", cycle_time)

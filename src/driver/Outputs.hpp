@@ -66,8 +66,12 @@ public:
   void afterCycle();
   /// \brief Final frame and rows, summary.json; `error` non-empty when the run failed.
   void finish(const std::string &error);
+  /// \brief finish() of a run stopped before its end by `signal` ("SIGTERM"): summary.json
+  /// says `"status": "interrupted"` and names the signal.
+  void finishInterrupted(const std::string &signal);
 
 private:
+  void finishWith(const std::string &status, const std::string &error, const std::string &signal);
   void writeFrame();
   void writeRows();
   void writeContactFrame();
