@@ -8,13 +8,13 @@ volatile std::sig_atomic_t g_received_signal = 0;
 
 extern "C" void recordSignal(int signal) { g_received_signal = signal; }
 
-void install(int signal, struct sigaction &previous)
+void install(int signal, struct sigaction &previous, int flags)
 {
   struct sigaction action = {};
   action.sa_handler = recordSignal;
   sigemptyset(&action.sa_mask);
   // restarted system calls: a signal in the middle of a write does not fail the write
-  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  action.sa_flags = SA_RESTART | flags;
   sigaction(signal, nullptr, &previous);
   if (previous.sa_handler != SIG_IGN)
     sigaction(signal, &action, nullptr);
@@ -23,8 +23,11 @@ void install(int signal, struct sigaction &previous)
 
 InterruptionHandlers::InterruptionHandlers()
 {
-  install(SIGINT, _previous_int);
-  install(SIGTERM, _previous_term);
+  // a second Ctrl-C ends the run at once; SIGTERM may come more than once from one request
+  // (a batch system signals every process of the job, mpirun signals its ranks again), and
+  // SIGKILL is there to force an end
+  install(SIGINT, _previous_int, SA_RESETHAND);
+  install(SIGTERM, _previous_term, 0);
 }
 
 InterruptionHandlers::~InterruptionHandlers()

@@ -11,9 +11,9 @@ namespace scpdyn
 {
 
 /// \brief While it lives, SIGINT and SIGTERM are recorded for receivedSignal() instead of ending
-/// the process. The first of each restores that signal's default action, so a second one ends
-/// the process at once. A signal ignored when the object is made (SIGINT of a background job
-/// of a script) stays ignored. The previous actions come back on destruction.
+/// the process. The first SIGINT restores its default action, so a second one ends the process
+/// at once; every SIGTERM is recorded alike. A signal ignored when the object is made (SIGINT of
+/// a background job of a script) stays ignored. The previous actions come back on destruction.
 class InterruptionHandlers
 {
 public:
