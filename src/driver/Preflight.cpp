@@ -19,10 +19,12 @@ constexpr size_t kListedSubParts = 8;
 std::string format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char *fmt, ...)
 {
-  char text[512];
-  va_list args;
+  va_list args, again;
   va_start(args, fmt);
-  std::vsnprintf(text, sizeof text, fmt, args);
+  va_copy(again, args);
+  std::string text(size_t(std::max(0, std::vsnprintf(nullptr, 0, fmt, args))), '\0');
+  std::vsnprintf(&text[0], text.size() + 1, fmt, again);
+  va_end(again);
   va_end(args);
   return text;
 }
@@ -72,16 +74,14 @@ Preflight preflight(const Solver &solver, const RunEstimate &estimate)
     tally[size_t(part(e))] += 1;
     tally[n + size_t(part(e))] += mass(e);
   }
-  double memory[2] = {residentBytes(), 0};
-  memory[1] = memory[0];
+  const double resident = residentBytes();
+  p.resident_bytes = p.resident_bytes_largest = resident;
   if (solver.numRanks() > 1)
   {
     allReduceSum(tally.data(), int(tally.size()), solver.comm());
-    memory[0] = allReduceSum(memory[0], solver.comm());
-    memory[1] = allReduceMax(memory[1], solver.comm());
+    p.resident_bytes = allReduceSum(resident, solver.comm());
+    p.resident_bytes_largest = allReduceMax(resident, solver.comm());
   }
-  p.resident_bytes = memory[0];
-  p.resident_bytes_largest = memory[1];
 
   const Deck &deck = solver.deck();
   const std::vector<int> &spec_of = solver.model().part_spec;
@@ -100,6 +100,8 @@ Preflight preflight(const Solver &solver, const RunEstimate &estimate)
       }
     if (d.sub_parts.size() == 1 && d.sub_parts[0].name == d.name)
       d.sub_parts.clear();
+    p.elements += d.elements;
+    p.mass += d.mass;
     p.parts.push_back(d);
   }
   return p;
@@ -121,12 +123,8 @@ std::string preflightText(const Preflight &p)
   std::string out = "scpdyn: pre-flight\n";
   out += format("  %-*s  %-*s  %9s  mass [%s]\n", nw, "part", mw, "material", "elements",
                 p.mass_unit.c_str());
-  long elements = 0;
-  double mass = 0;
   for (const DeckPartTally &d : p.parts)
   {
-    elements += d.elements;
-    mass += d.mass;
     std::string line = format("  %-*s  %-*s  %9ld  %.6g", nw, d.name.c_str(), mw,
                               d.material.c_str(), d.elements, d.mass);
     if (d.sub_parts.size() > kListedSubParts)
@@ -145,9 +143,9 @@ std::string preflightText(const Preflight &p)
         out += format("    %-*s  %-*s  %9ld  %.6g\n", nw - 2, s.name.c_str(), mw, "", s.elements,
                       s.mass);
   }
-  out += format("  %-*s  %-*s  %9ld  %.6g\n", nw, "total", mw, "", elements, mass);
+  out += format("  %-*s  %-*s  %9ld  %.6g\n", nw, "total", mw, "", p.elements, p.mass);
   const RunEstimate &e = p.estimate;
-  // the estimate's line as it was before the block existed, with what set the first step
+  // the estimate (Outputs.hpp), with what set the first step
   out += format("  estimate: %.0f cycles (first dt %.3e s, set by %s), %.0f history rows, %.0f "
                 "frames, %s of output\n",
                 e.cycles, e.first_dt, p.first_step.control.c_str(), e.history_rows, e.frames,
@@ -165,8 +163,6 @@ std::string preflightText(const Preflight &p)
 JsonObject preflightJson(const Preflight &p)
 {
   JsonObject parts;
-  long elements = 0;
-  double mass = 0;
   for (const DeckPartTally &d : p.parts)
   {
     JsonObject part;
@@ -180,8 +176,6 @@ JsonObject preflightJson(const Preflight &p)
     }
     part.add("sub_parts", subs);
     parts.add(d.name, part);
-    elements += d.elements;
-    mass += d.mass;
   }
   JsonObject first_dt;
   first_dt.add("value", p.first_step.dt).add("control", p.first_step.control);
@@ -198,8 +192,8 @@ JsonObject preflightJson(const Preflight &p)
   JsonObject out;
   out.add("mass_unit", p.mass_unit)
       .add("parts", parts)
-      .add("elements", elements)
-      .add("mass", mass)
+      .add("elements", p.elements)
+      .add("mass", p.mass)
       .add("first_dt", first_dt)
       .add("estimate", estimate)
       .add("memory", memory);

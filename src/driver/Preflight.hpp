@@ -34,6 +34,8 @@ struct DeckPartTally : PartTally
 struct Preflight
 {
   std::vector<DeckPartTally> parts;
+  long elements = 0;               ///< of all parts
+  double mass = 0;                 ///< of all parts [kg] in mass_unit
   std::string mass_unit;           ///< "kg", "kg per metre (plane strain)", ...
   Solver::SmallestStep first_step; ///< the first time step and what set it
   RunEstimate estimate;
