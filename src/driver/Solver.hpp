@@ -179,9 +179,9 @@ private:
   Real _dt = 0;
   Real _dt_next = 0;
   SmallestStep _smallest_step, _next_step; ///< the smallest step taken; the next one's control
-  SmallestStep _first_step;
-  int _stop_signal = 0;    ///< a signal any rank had at the last time-step reduction
-  int _interrupted_by = 0; ///< the signal that stopped run() before the end
+  SmallestStep _first_step; ///< cycle 0's step and what set it (the pre-flight block)
+  int _stop_signal = 0;     ///< a signal any rank had at the last time-step reduction
+  int _interrupted_by = 0;  ///< the signal that stopped run() before the end
   void recordNextStep(MPI_Comm comm);
   int _gravity_function = -1;          ///< index into the deck's functions, or -1: constant gravity
   std::array<Real, 3> _gravity;        ///< the gravity of this cycle, g(t^n) [m/s^2]
