@@ -15,6 +15,26 @@ namespace
 {
 /// Up to this many sub-parts are listed one per line; more are one group on the part's line.
 constexpr size_t kListedSubParts = 8;
+/// Up to this many deck parts are listed one per line; with more, runs of parts numbered alike
+/// (b000, b001, ...) of one material are one line each.
+constexpr size_t kListedParts = 12;
+
+/// A line of the parts table: a deck part, a sub-part, or a run of deck parts.
+struct TableRow
+{
+  std::string name, material, note;
+  long elements = 0;
+  double mass = 0;
+};
+
+/// "b" of "b042", "wall_" of "wall_7": the name without its trailing number ("" without one).
+std::string numberedStem(const std::string &name)
+{
+  const size_t last = name.find_last_not_of("0123456789");
+  if (last + 1 == name.size() || last == std::string::npos)
+    return "";
+  return name.substr(0, last + 1);
+}
 
 std::string format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 std::string format(const char *fmt, ...)
@@ -27,6 +47,17 @@ std::string format(const char *fmt, ...)
   va_end(again);
   va_end(args);
   return text;
+}
+
+/// "4 elements each", "2 to 4 elements each" of the parts.
+std::string elementsEach(const std::vector<PartTally> &parts)
+{
+  long least = parts.front().elements, most = least;
+  for (const PartTally &t : parts)
+    least = std::min(least, t.elements), most = std::max(most, t.elements);
+  const char *noun = most == 1 ? "element" : "elements";
+  return least == most ? format("%ld %s each", least, noun)
+                       : format("%ld to %ld %s each", least, most, noun);
 }
 } // namespace
 
@@ -109,41 +140,54 @@ Preflight preflight(const Solver &solver, const RunEstimate &estimate)
 
 std::string preflightText(const Preflight &p)
 {
-  // a table whose first column fits the longest name listed on a line of its own
-  size_t name_width = std::string("total").size(), material_width = 8;
-  for (const DeckPartTally &d : p.parts)
+  std::vector<TableRow> rows;
+  const bool group_parts = p.parts.size() > kListedParts;
+  for (size_t i = 0; i < p.parts.size();)
   {
-    name_width = std::max(name_width, d.name.size());
-    material_width = std::max(material_width, d.material.size());
-    if (d.sub_parts.size() <= kListedSubParts)
-      for (const PartTally &s : d.sub_parts)
-        name_width = std::max(name_width, s.name.size() + 2);
+    const DeckPartTally &d = p.parts[i];
+    const std::string stem = numberedStem(d.name);
+    size_t end = i + 1;
+    while (group_parts && !stem.empty() && end < p.parts.size() &&
+           numberedStem(p.parts[end].name) == stem && p.parts[end].material == d.material)
+      ++end;
+    if (end - i > 1)
+    {
+      const std::vector<PartTally> run(p.parts.begin() + long(i), p.parts.begin() + long(end));
+      TableRow r{d.name + " .. " + p.parts[end - 1].name, d.material, "", 0, 0};
+      for (const PartTally &t : run)
+        r.elements += t.elements, r.mass += t.mass;
+      r.note = format("%zu parts, ", run.size()) + elementsEach(run);
+      rows.push_back(r);
+    }
+    else if (d.sub_parts.size() > kListedSubParts)
+      rows.push_back({d.name, d.material,
+                      format("%zu sub-parts %s .. %s, ", d.sub_parts.size(),
+                             d.sub_parts.front().name.c_str(), d.sub_parts.back().name.c_str()) +
+                          elementsEach(d.sub_parts),
+                      d.elements, d.mass});
+    else
+    {
+      rows.push_back({d.name, d.material, "", d.elements, d.mass});
+      for (const PartTally &t : d.sub_parts) // indented under their part
+        rows.push_back({"  " + t.name, "", "", t.elements, t.mass});
+    }
+    i = end;
+  }
+  rows.push_back({"total", "", "", p.elements, p.mass});
+
+  size_t name_width = 4, material_width = 8; // "part", "material"
+  for (const TableRow &r : rows)
+  {
+    name_width = std::max(name_width, r.name.size());
+    material_width = std::max(material_width, r.material.size());
   }
   const int nw = int(name_width), mw = int(material_width);
   std::string out = "scpdyn: pre-flight\n";
   out += format("  %-*s  %-*s  %9s  mass [%s]\n", nw, "part", mw, "material", "elements",
                 p.mass_unit.c_str());
-  for (const DeckPartTally &d : p.parts)
-  {
-    std::string line = format("  %-*s  %-*s  %9ld  %.6g", nw, d.name.c_str(), mw,
-                              d.material.c_str(), d.elements, d.mass);
-    if (d.sub_parts.size() > kListedSubParts)
-    {
-      long least = d.sub_parts[0].elements, most = least;
-      for (const PartTally &s : d.sub_parts)
-        least = std::min(least, s.elements), most = std::max(most, s.elements);
-      line += format("  %zu sub-parts %s .. %s, ", d.sub_parts.size(),
-                     d.sub_parts.front().name.c_str(), d.sub_parts.back().name.c_str());
-      line += least == most ? format("%ld elements each", least)
-                            : format("%ld to %ld elements each", least, most);
-    }
-    out += line + "\n";
-    if (d.sub_parts.size() <= kListedSubParts)
-      for (const PartTally &s : d.sub_parts)
-        out += format("    %-*s  %-*s  %9ld  %.6g\n", nw - 2, s.name.c_str(), mw, "", s.elements,
-                      s.mass);
-  }
-  out += format("  %-*s  %-*s  %9ld  %.6g\n", nw, "total", mw, "", p.elements, p.mass);
+  for (const TableRow &r : rows)
+    out += format("  %-*s  %-*s  %9ld  %.6g%s%s\n", nw, r.name.c_str(), mw, r.material.c_str(),
+                  r.elements, r.mass, r.note.empty() ? "" : "  ", r.note.c_str());
   const RunEstimate &e = p.estimate;
   // the estimate (Outputs.hpp), with what set the first step
   out += format("  estimate: %.0f cycles (first dt %.3e s, set by %s), %.0f history rows, %.0f "

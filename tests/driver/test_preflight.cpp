@@ -1,8 +1,8 @@
-// The pre-flight block a run prints before its first cycle and summary.json's `preflight`:
-// every part's mass against density x volume of its generated blocks (plane strain,
-// axisymmetric, 3D), the sub-parts of a brick wall (grouped when there are many) and of a gmsh
-// file's physical groups, the first time step against dt_min, and a two-rank run against the
-// serial one.
+// The pre-flight block a run prints before its first cycle and summary.json's `preflight`: every
+// part's mass against density x volume of its generated blocks (plane strain, axisymmetric, 3D),
+// the sub-parts of a brick wall (grouped when there are many), many deck parts numbered alike,
+// the sub-parts of a gmsh file's physical groups, the first time step against dt_min, and a
+// two-rank run against the serial one.
 #include "TestUtil.hpp"
 #include "SummaryJson.hpp"
 
@@ -218,6 +218,49 @@ TEST(Preflight, ABrickWallsBricksAreItsSubPartsGroupedWhenMany)
     EXPECT_NE(brick_lines[0].find(" " + std::to_string(n) + " "), std::string::npos)
         << brick_lines[0];
   }
+}
+
+TEST(Preflight, ManyDeckPartsNumberedAlikeAreOneLine)
+{
+  // 20 blocks b00 .. b19 in a row (a bar of blocks, as the paper's Fig. 2 decks have 100), and
+  // an anvil of another material: more parts than the block lists one by one
+  const int n = 20;
+  std::string deck = "dimension: 2\ntime: {end: 2.0e-6}\n" + kTwoMaterials + "parts:\n";
+  char line[256];
+  for (int k = 0; k < n; ++k)
+  {
+    std::snprintf(line, sizeof line,
+                  "  - {name: b%02d, material: ls, mesh: {elements: [2, 1], origin: [%.3f, 0], "
+                  "size: [0.002, 0.001]}}\n",
+                  k, 0.002 * k);
+    deck += line;
+  }
+  deck += "  - {name: anvil, material: st, mesh: {elements: [4, 2], origin: [0, -0.002], size: "
+          "[0.04, 0.002]}}\n";
+  std::string block;
+  const std::string s = test::readText(runDeck("many_parts", deck, &block) + "/summary.json");
+  const std::vector<std::string> parts = test::jsonKeys(s, {"preflight", "parts"});
+  ASSERT_EQ(parts.size(), size_t(n + 1)) << "summary.json lists every part";
+  double mass = 0, elements = 0;
+  for (int k = 0; k < n; ++k)
+  {
+    mass += test::jsonNumber(s, {"preflight", "parts", parts[size_t(k)], "mass"});
+    elements += test::jsonNumber(s, {"preflight", "parts", parts[size_t(k)], "elements"});
+  }
+  const std::vector<std::string> lines = linesStarting(block, "  b00 .. b19 ");
+  ASSERT_EQ(lines.size(), 1u) << block;
+  std::istringstream in(lines[0].substr(std::string("  b00 .. b19 ").size()));
+  std::string material;
+  long shown_elements = 0;
+  double shown_mass = 0;
+  in >> material >> shown_elements >> shown_mass;
+  EXPECT_EQ(material, "ls");
+  EXPECT_EQ(double(shown_elements), elements);
+  EXPECT_NEAR(shown_mass, mass, 5e-6 * mass) << "to the 6 digits printed";
+  EXPECT_NEAR(mass, 2600 * n * 0.002 * 0.001, massTolerance(2600 * n * 0.002 * 0.001, elements));
+  EXPECT_NE(lines[0].find("20 parts, 2 elements each"), std::string::npos) << lines[0];
+  EXPECT_EQ(linesStarting(block, "  anvil ").size(), 1u) << block;
+  EXPECT_TRUE(linesStarting(block, "  b01 ").empty()) << block;
 }
 
 TEST(Preflight, AGmshFilesPhysicalGroupsAreItsSubParts)
