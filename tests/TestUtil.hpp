@@ -46,16 +46,21 @@ inline std::string readText(const std::string &path)
   return ss.str();
 }
 
-/// \brief Runs the scpdyn binary; returns its exit status, stderr text in `err`.
+/// \brief Runs the scpdyn binary; returns its exit status, stderr text in `err` and stdout
+/// text in `out`.
 inline int runBinary(const std::string &args, std::string *err = nullptr,
-                     const std::string &env = "")
+                     const std::string &env = "", std::string *out = nullptr)
 {
-  const std::string err_file = std::string(SCPDYN_TEST_WORKDIR) + "/stderr_" +
-                               std::to_string(std::hash<std::string>()(args + env)) + ".txt";
-  const std::string cmd = env + " " + SCPDYN_BINARY + " " + args + " > /dev/null 2> " + err_file;
+  const std::string key = std::to_string(std::hash<std::string>()(args + env)) + ".txt";
+  const std::string err_file = std::string(SCPDYN_TEST_WORKDIR) + "/stderr_" + key;
+  const std::string out_file = std::string(SCPDYN_TEST_WORKDIR) + "/stdout_" + key;
+  const std::string cmd = env + " " + SCPDYN_BINARY + " " + args + " > " +
+                          (out ? out_file : std::string("/dev/null")) + " 2> " + err_file;
   const int rc = std::system(cmd.c_str());
   if (err)
     *err = readText(err_file);
+  if (out)
+    *out = readText(out_file);
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
 

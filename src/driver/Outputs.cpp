@@ -1,6 +1,7 @@
 #include "driver/Outputs.hpp"
 
 #include "BuildCommit.hpp"
+#include "driver/Preflight.hpp"
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
@@ -92,7 +93,8 @@ const std::vector<std::string> kRunFiles = {"fields.xmf",
                                             "summary.json.tmp",
                                             "deck.resolved.yaml.tmp"};
 
-/// "%.3g" of a byte count with its decimal unit (kB, MB, GB, TB).
+} // namespace
+
 std::string formatBytes(double bytes)
 {
   const char *units[] = {"B", "kB", "MB", "GB", "TB", "PB"};
@@ -104,6 +106,8 @@ std::string formatBytes(double bytes)
   return text;
 }
 
+namespace
+{
 // the widest "%.17g" number (-1.2345678901234567e-300) and its separator
 constexpr double kCsvValueBytes = 25;
 // HDF5 group and dataset headers of one frame, and the frame's share of the XDMF text
@@ -199,11 +203,13 @@ Outputs::Outputs(const Solver &solver, const std::string &dir) : _solver(solver)
   const std::string refusal = estimateRefusal(solver.deck(), e);
   if (!refusal.empty()) // the same numbers on every rank: all ranks stop here
     throw InputError(refusal);
+  const Preflight p = preflight(solver, e);
+  _preflight = preflightJson(p);
   if (root())
-    std::fprintf(stderr,
-                 "scpdyn: estimate: %.0f cycles (first dt %.3e s), %.0f history rows, %.0f "
-                 "frames, %s of output\n",
-                 e.cycles, e.first_dt, e.history_rows, e.frames, formatBytes(e.bytes).c_str());
+  {
+    std::fputs(preflightText(p).c_str(), stdout);
+    std::fflush(stdout); // before the progress lines on stderr, when both go to one terminal
+  }
   std::string error;
   if (root())
     try
@@ -516,6 +522,17 @@ void Outputs::afterCycle()
 
 void Outputs::finish(const std::string &error)
 {
+  finishWith(error.empty() ? "completed" : "failed", error, "");
+}
+
+void Outputs::finishInterrupted(const std::string &signal)
+{
+  finishWith("interrupted", "", signal);
+}
+
+void Outputs::finishWith(const std::string &status, const std::string &error,
+                         const std::string &signal)
+{
   writeFrame();
   writeRows();
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - _start).count();
@@ -609,9 +626,11 @@ void Outputs::finish(const std::string &error)
   s.add("title", _solver.deck().title)
       .add("deck", std::filesystem::absolute(_solver.deck().path).lexically_normal().string())
       .add("commit", std::string(SCPDYN_COMMIT))
-      .add("status", error.empty() ? std::string("completed") : std::string("failed"))
-      .add("error", error)
-      .add("cycles", _solver.cycles())
+      .add("status", status)
+      .add("error", error);
+  if (!signal.empty())
+    s.add("interrupted_by", signal);
+  s.add("cycles", _solver.cycles())
       .add("end_time", _solver.time())
       .add("wall_time", wall)
       .add("cycle_time", cycle_time)
@@ -649,6 +668,7 @@ void Outputs::finish(const std::string &error)
   for (size_t p = 0; p < _solver.mesh().parts.size(); ++p)
     parts.add(std::to_string(p), _solver.mesh().parts[p].name);
   s.add("parts", parts);
+  s.add("preflight", _preflight);
   writeJson(_dir + "/summary.json", s);
 }
 

@@ -3,10 +3,10 @@
 /// \brief Step 13's outputs: field frames (HDF5 + XDMF), history.csv, gauges.csv (with
 /// gauges), rcforc.csv, spcforc.csv and matsum.csv at history.csv's rows (RunHistories.hpp),
 /// summary.json, the resolved deck and a progress line on stderr. Before the first
-/// cycle: an estimate of the run's cycles and output size (refused above the deck's limits),
-/// the lock of the output directory and the removal of a previous run's files. Decomposed
-/// runs: every member is collective; rank 0 locks the directory and writes the files, in the
-/// serial layout.
+/// cycle: an estimate of the run's cycles and output size (refused above the deck's limits)
+/// in the pre-flight block (driver/Preflight.hpp), the lock of the output directory and the
+/// removal of a previous run's files. Decomposed runs: every member is collective; rank 0 locks
+/// the directory and writes the files, in the serial layout.
 #include "driver/OutputGather.hpp"
 #include "driver/RunHistories.hpp"
 #include "io/FieldWriter.hpp"
@@ -36,6 +36,9 @@ struct RunEstimate
   double bytes = 0;        ///< all outputs
 };
 
+/// \brief "%.3g" of a byte count with its decimal unit (kB, MB, GB, TB).
+std::string formatBytes(double bytes);
+
 /// \brief The estimate of `solver`'s run (collective: the same numbers on every rank).
 RunEstimate estimateRun(const Solver &solver);
 
@@ -52,9 +55,9 @@ double nextOutputTime(double next, double interval, double t, double eps);
 class Outputs
 {
 public:
-  /// \brief Estimates the run and prints the estimate (an InputError above the deck's limits),
-  /// locks `dir` and removes a previous run's outputs from it (an InputError naming the
-  /// directory when another live run holds it).
+  /// \brief Estimates the run (an InputError above the deck's limits), prints the pre-flight
+  /// block on stdout, locks `dir` and removes a previous run's outputs from it (an InputError
+  /// naming the directory when another live run holds it).
   Outputs(const Solver &solver, const std::string &dir);
   ~Outputs();
   /// \brief Writes the resolved deck and the initial frame and rows.
@@ -63,8 +66,12 @@ public:
   void afterCycle();
   /// \brief Final frame and rows, summary.json; `error` non-empty when the run failed.
   void finish(const std::string &error);
+  /// \brief finish() of a run stopped before its end by `signal` ("SIGTERM"): summary.json
+  /// says `"status": "interrupted"` and names the signal.
+  void finishInterrupted(const std::string &signal);
 
 private:
+  void finishWith(const std::string &status, const std::string &error, const std::string &signal);
   void writeFrame();
   void writeRows();
   void writeContactFrame();
@@ -72,6 +79,7 @@ private:
 
   const Solver &_solver;
   std::string _dir;
+  JsonObject _preflight;                      ///< summary.json's `preflight` (driver/Preflight.hpp)
   std::unique_ptr<OutputDirectoryLock> _lock; ///< rank 0; released after the writers close
   std::unique_ptr<FieldWriter> _fields;
   std::unique_ptr<PointSetWriter> _contacts; ///< contacts.xmf/h5, with contact surfaces only

@@ -4,6 +4,7 @@
 #include "bc/TimeFunctions.hpp"
 #include "contact/ContactSystem.hpp"
 #include "parallel/Decomposition.hpp"
+#include "driver/Interruption.hpp"
 #include "driver/Outputs.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -54,6 +55,9 @@ void Solver::startCycles()
   _dt_next = nextTimeStep(first, timeStepControls(), s, comm);
   _limits = first;
   recordNextStep(comm);
+  _first_step = _next_step;
+  _first_step.cycle = 0;
+  _first_step.time = _time;
   _last_sums = s;
   _kinetic_mid = s.kinetic;
   _initial_energy = 0;
@@ -195,7 +199,8 @@ void Solver::stepUpdateNodes()
   if (_m.contact && _m.contact->hasExplicit()) // (19), from v^{n+1}
     _limits.contact = _m.contact->stableTimeStep(_m.nodes, _m.elems,
                                                  elementStep(_limits, timeStepControls(), comm));
-  _dt_next = nextTimeStep(_limits, timeStepControls(), _last_sums, comm);
+  _stop_signal = receivedSignal(); // becomes any rank's, in the reduction of the step
+  _dt_next = nextTimeStep(_limits, timeStepControls(), _last_sums, comm, &_stop_signal);
   recordNextStep(comm);
   _external_work += _last_sums.external_work;
   _kinetic_mid = _last_sums.kinetic_mid;
@@ -254,16 +259,26 @@ void Solver::checkEarlyNodes() const
   collectiveCheck(error);
 }
 
+bool Solver::reachedEnd() const
+{
+  return !(_time < _m.deck.end_time && (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles));
+}
+
 long Solver::run(const std::string &output_dir)
 {
   Outputs out(*this, output_dir);
   out.begin();
   try
   {
-    while (_time < _m.deck.end_time && (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles))
+    while (!reachedEnd())
     {
       cycle();
       out.afterCycle();
+      if (_stop_signal && !reachedEnd()) // a signal in the last cycle of the run changes nothing
+      {
+        _interrupted_by = _stop_signal;
+        break;
+      }
     }
   }
   catch (const SimulationError &e)
@@ -271,8 +286,13 @@ long Solver::run(const std::string &output_dir)
     out.finish(e.what());
     throw;
   }
-  out.finish("");
+  if (_interrupted_by)
+    endInterruptedRun(out);
+  else
+    out.finish("");
   return _cycle;
 }
+
+void Solver::endInterruptedRun(Outputs &out) { out.finishInterrupted(signalName(_interrupted_by)); }
 
 } // namespace scpdyn

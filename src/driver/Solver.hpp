@@ -52,6 +52,9 @@ public:
   ~Solver();
 
   /// \brief Run to the end time with outputs in `output_dir`; returns the number of cycles.
+  /// A signal caught by driver/Interruption.hpp on any rank stops it at the end of the cycle
+  /// in whose time-step reduction the signal is first seen, on every rank alike, with complete
+  /// outputs of that cycle (interruptedBy() says which signal).
   long run(const std::string &output_dir);
   /// \brief One cycle of the 13 steps.
   void cycle();
@@ -71,6 +74,12 @@ public:
     std::string control;
   };
   const SmallestStep &smallestStep() const { return _smallest_step; }
+  /// \brief The first time step (cycle 0, at time 0) and what set it, described as
+  /// smallestStep() describes its step.
+  const SmallestStep &firstStep() const { return _first_step; }
+  /// \brief The signal (SIGINT, SIGTERM) that stopped run() before the end, the same on every
+  /// rank; 0 when the run was not interrupted (driver/Interruption.hpp).
+  int interruptedBy() const { return _interrupted_by; }
   /// \brief The element controls step 6 of the next cycle runs with (the deck's, this dt).
   ElementControls elementControls() const
   {
@@ -131,6 +140,11 @@ public:
 
 private:
   void startCycles();
+  bool reachedEnd() const;
+  /// \brief The end of an interrupted run, on every rank at the end of the same cycle: the last
+  /// frame, rows and summary.json. A restart file, once scpdyn can restart, is written here:
+  /// the state is then that of a whole cycle on every rank.
+  void endInterruptedRun(Outputs &out);
   void jointGaugeValues(std::vector<Real> &out) const;
   void ensureNodeCapacity(Index count);
   void restrictGhosts();
@@ -165,6 +179,9 @@ private:
   Real _dt = 0;
   Real _dt_next = 0;
   SmallestStep _smallest_step, _next_step; ///< the smallest step taken; the next one's control
+  SmallestStep _first_step; ///< cycle 0's step and what set it (the pre-flight block)
+  int _stop_signal = 0;     ///< a signal any rank had at the last time-step reduction
+  int _interrupted_by = 0;  ///< the signal that stopped run() before the end
   void recordNextStep(MPI_Comm comm);
   int _gravity_function = -1;          ///< index into the deck's functions, or -1: constant gravity
   std::array<Real, 3> _gravity;        ///< the gravity of this cycle, g(t^n) [m/s^2]

@@ -1,8 +1,10 @@
 // scpdyn command line: scpdyn DECK.yaml [-o DIR]; Kokkos flags (--kokkos-...) pass through.
-// Exit status: 0 done, 1 internal error, 2 input error, 3 the run failed (outputs kept).
+// Exit status: 0 done, 1 internal error, 2 input error, 3 the run failed (outputs kept),
+// 130 / 143 stopped by SIGINT / SIGTERM at the end of a cycle (outputs complete to it).
 // Under mpirun every rank runs this; the mesh is decomposed over the ranks, rank 0 prints and
 // writes the outputs, and the errors are collective, so all ranks exit with the same status.
 #include "BuildCommit.hpp"
+#include "driver/Interruption.hpp"
 #include "driver/Solver.hpp"
 #include "parallel/Mpi.hpp"
 
@@ -26,6 +28,8 @@ const char *kUsage =
     "  Threads: OMP_NUM_THREADS=T (or --kokkos-num-threads=T); binding: OMP_PROC_BIND=spread\n"
     "           and OMP_PLACES=threads unless set.\n"
     "  Ranks:   mpirun -np R scpdyn DECK.yaml (hybrid: R ranks x OMP_NUM_THREADS threads).\n"
+    "  Signals: SIGINT / SIGTERM stop the run at the end of the cycle, outputs complete\n"
+    "           (exit status 130 / 143).\n"
     "  Outputs: fields.xmf/.h5 (ParaView), history.csv, gauges.csv (with gauges),\n"
     "           contacts.xmf/.h5 (with contact), summary.json, deck.resolved.yaml.\n";
 
@@ -117,8 +121,21 @@ int main(int argc, char **argv)
                        "scpdyn: %s: %ld nodes, %ld elements, %d ranks x %d thread%s -> %s\n",
                        deck_path.c_str(), solver.globalNodeCount(), solver.globalElementCount(),
                        solver.numRanks(), threads, threads == 1 ? "" : "s", out_dir.c_str());
-        const long cycles = solver.run(out_dir);
-        if (root)
+        long cycles = 0;
+        {
+          const scpdyn::InterruptionHandlers interruption;
+          cycles = solver.run(out_dir);
+        }
+        if (const int signal = solver.interruptedBy())
+        {
+          if (root)
+            std::fprintf(stderr,
+                         "scpdyn: interrupted by %s at cycle %ld, t = %.6e s; outputs are "
+                         "complete to that cycle\n",
+                         scpdyn::signalName(signal).c_str(), cycles, solver.time());
+          status = scpdyn::interruptedExitStatus(signal);
+        }
+        else if (root)
           std::printf("scpdyn: done, %ld cycles to t = %.6e s; results in %s\n", cycles,
                       solver.time(), out_dir.c_str());
       }

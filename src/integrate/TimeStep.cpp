@@ -14,7 +14,7 @@ Real elementStep(const TimeStepLimits &limits, const TimeStepControls &ctl, MPI_
 }
 
 Real nextTimeStep(const TimeStepLimits &limits, const TimeStepControls &ctl, NodeSums &sums,
-                  MPI_Comm comm)
+                  MPI_Comm comm, int *stop_signal)
 {
   const Real element_dt = cappedElementStep(limits, ctl);
   Real dt = limits.contact < element_dt ? limits.contact : element_dt;
@@ -22,7 +22,12 @@ Real nextTimeStep(const TimeStepLimits &limits, const TimeStepControls &ctl, Nod
     return dt;
   Real sum[6] = {sums.kinetic,     sums.kinetic_mid, sums.external_work,
                  sums.momentum[0], sums.momentum[1], sums.momentum[2]};
-  allReduceSumMin(sum, 6, &dt, 1, comm);
+  // the largest signal number as the least of their negatives, exact in a double
+  Real mins[2] = {dt, stop_signal ? -Real(*stop_signal) : 0};
+  allReduceSumMin(sum, 6, mins, 2, comm);
+  dt = mins[0];
+  if (stop_signal)
+    *stop_signal = int(-mins[1]);
   sums.kinetic = sum[0];
   sums.kinetic_mid = sum[1];
   sums.external_work = sum[2];

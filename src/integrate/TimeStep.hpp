@@ -42,8 +42,10 @@ Real elementStep(const TimeStepLimits &limits, const TimeStepControls &ctl, MPI_
 
 /// \brief The next time step, min(cappedElementStep(), contact) over all ranks of `comm`, and
 /// `sums` (this rank's step-12 sums of its owned nodes) summed over them in rank order, in one
-/// collective (MPI_COMM_NULL: one rank, nothing to reduce) [s].
+/// collective (MPI_COMM_NULL: one rank, nothing to reduce) [s]. With `stop_signal`: in, the
+/// signal this rank was asked to stop by (0: none), out, the largest of any rank's, in the same
+/// collective, so that all ranks stop after the same cycle (driver/Interruption.hpp).
 Real nextTimeStep(const TimeStepLimits &limits, const TimeStepControls &ctl, NodeSums &sums,
-                  MPI_Comm comm);
+                  MPI_Comm comm, int *stop_signal = nullptr);
 
 } // namespace scpdyn

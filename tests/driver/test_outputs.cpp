@@ -1,7 +1,8 @@
-// What a run writes, seen through the scpdyn binary: the estimate before the first cycle and
-// the refusal of runs that would never end or fill the disk, output intervals far below the
-// time step, the lock of the output directory, a rerun into a used directory, a full disk, and
-// contacts.xmf read by meshio and ParaView.
+// What a run writes, seen through the scpdyn binary: the estimate before the first cycle (a
+// line of the pre-flight block, test_preflight.cpp) and the refusal of runs that would never
+// end or fill the disk, output intervals far below the time step, the lock of the output
+// directory, a rerun into a used directory, a full disk, and contacts.xmf read by meshio and
+// ParaView.
 #include "TestUtil.hpp"
 
 #include <gtest/gtest.h>
@@ -72,10 +73,11 @@ std::string outDir(const std::string &name)
 }
 
 /// the binary under `timeout`: a run that does not end is a failure, not a hung test
-int run(const std::string &args, std::string *err, const std::string &env = "")
+int run(const std::string &args, std::string *err, const std::string &env = "",
+        std::string *out = nullptr)
 {
-  return test::runBinary(args, err,
-                         "OMP_NUM_THREADS=1 OMP_PROC_BIND=false " + env + " timeout 120");
+  return test::runBinary(args, err, "OMP_NUM_THREADS=1 OMP_PROC_BIND=false " + env + " timeout 120",
+                         out);
 }
 
 int count(const std::string &text, const std::string &what)
@@ -109,14 +111,14 @@ bool python(const std::string &module)
 TEST(Outputs, EstimateLineGivesTheCyclesTheRunTakes)
 {
   const std::string dir = outDir("estimate");
-  std::string err;
-  ASSERT_EQ(run(deckFile("block.yaml", kBlockDeck) + " -o " + dir, &err), 0) << err;
-  // one line before the first cycle; at rest the time step stays the first, so the estimate
-  // (end time / first dt, rounded up) is the cycle count exactly
+  std::string err, out;
+  ASSERT_EQ(run(deckFile("block.yaml", kBlockDeck) + " -o " + dir, &err, "", &out), 0) << err;
+  // one line of the pre-flight block on stdout; at rest the time step stays the first, so the
+  // estimate (end time / first dt, rounded up) is the cycle count exactly
   std::smatch m;
-  ASSERT_TRUE(std::regex_search(err, m, std::regex("estimate: ([0-9]+) cycles .* of output\n")))
-      << err;
-  EXPECT_EQ(std::stol(m[1]), summaryCycles(dir)) << err;
+  ASSERT_TRUE(std::regex_search(out, m, std::regex("estimate: ([0-9]+) cycles .* of output\n")))
+      << out;
+  EXPECT_EQ(std::stol(m[1]), summaryCycles(dir)) << out;
   EXPECT_EQ(summaryCycles(dir), 10);
 }
 

@@ -101,4 +101,24 @@ TEST(Mpi, NextTimeStepReducesLimitsAndSumsInOneCollective)
   EXPECT_EQ(firstErrorOfAnyRank(""), "");
 }
 
+TEST(Mpi, NextTimeStepTellsEveryRankOfAStopSignalOfAnyRank)
+{
+  // the last rank alone was signalled: every rank learns it from the one collective, and the
+  // step is the same as without it; the larger of two signals wins, none leaves 0
+  const int rank = mpiRank(), size = mpiSize();
+  TimeStepLimits limits;
+  limits.element = 1e-6 * (2.0 + rank);
+  NodeSums sums;
+  int signal = rank == size - 1 ? 15 : 0;
+  const Real dt = nextTimeStep(limits, TimeStepControls(), sums, MPI_COMM_WORLD, &signal);
+  EXPECT_EQ(signal, 15);
+  EXPECT_EQ(dt, 0.5 * 2e-6);
+  signal = rank == 0 ? 2 : (rank == size - 1 ? 15 : 0);
+  nextTimeStep(limits, TimeStepControls(), sums, MPI_COMM_WORLD, &signal);
+  EXPECT_EQ(signal, size == 1 ? 2 : 15);
+  signal = 0;
+  nextTimeStep(limits, TimeStepControls(), sums, MPI_COMM_WORLD, &signal);
+  EXPECT_EQ(signal, 0);
+}
+
 } // namespace scpdyn::test
