@@ -34,31 +34,6 @@ KOKKOS_INLINE_FUNCTION Index findPair(const DeviceView<long *> &a1, const Device
   return lo < n && a1(lo) == f1 && a2(lo) == f2 ? lo : -1;
 }
 
-CommonPlaneData allocatePlanes(Index n)
-{
-  CommonPlaneData c;
-  const size_t m = size_t(n);
-  c.count = n;
-  c.face1 = IndexView("cp_face1", m);
-  c.face2 = IndexView("cp_face2", m);
-  c.key1 = DeviceView<long *>("cp_key1", m);
-  c.key2 = DeviceView<long *>("cp_key2", m);
-  c.state = DeviceView<CpState *>("cp_state", m);
-  c.params = DeviceView<JointParams *>("cp_params", m);
-  c.normal = VectorView("cp_normal", m);
-  c.poc = VectorView("cp_poc", m);
-  c.force = VectorView("cp_force", m);
-  c.area = RealView("cp_area", m);
-  c.face_area1 = RealView("cp_face_area1", m);
-  c.face_area2 = RealView("cp_face_area2", m);
-  c.mstar = RealView("cp_mstar", m);
-  c.stored = RealView("cp_stored", m);
-  c.w1 = DeviceView<Real *[kMaxFaceNodes]>("cp_w1", m);
-  c.w2 = DeviceView<Real *[kMaxFaceNodes]>("cp_w2", m);
-  c.status = IndexView("cp_status", m);
-  return c;
-}
-
 } // namespace
 
 ContactSystem::ContactSystem(const ContactMeshInput &in)

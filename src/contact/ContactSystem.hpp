@@ -17,6 +17,8 @@ namespace scpdyn
 {
 
 struct GhostFaceDesc;
+class RestartWriter;
+class RestartReader;
 
 /// \brief What the contact of a decomposed run needs from the communication layer;
 /// empty members on one rank.
@@ -144,6 +146,12 @@ public:
   const VectorView &nodalForces() const { return _fc; }
   /// \brief The live CPs, copied to the host.
   ContactPointsHost points() const;
+  /// \brief The CPs (by face keys, 3.5, with their histories) and the contact accumulators,
+  /// for a restart file (contact/ContactRestart.cpp). One rank only.
+  void saveState(RestartWriter &out) const;
+  /// \brief The state saveState() wrote; the CPs' faces are found by key and their parameters
+  /// averaged again (3.6).
+  void loadState(const RestartReader &in);
   /// \brief "common plane 3 between faces (element 12 face 1 of part 'a') and (element 40 face
   /// 3 of part 'b') of contact surface 'j' (option implicit)".
   std::string describe(Index cp) const;

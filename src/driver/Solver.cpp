@@ -3,9 +3,12 @@
 
 #include "bc/TimeFunctions.hpp"
 #include "contact/ContactSystem.hpp"
+#include "core/InputError.hpp"
 #include "parallel/Decomposition.hpp"
 #include "driver/Interruption.hpp"
 #include "driver/Outputs.hpp"
+#include "driver/Restart.hpp"
+#include "io/RestartFile.hpp"
 #include "parallel/Mpi.hpp"
 
 #include <chrono>
@@ -264,10 +267,20 @@ bool Solver::reachedEnd() const
   return !(_time < _m.deck.end_time && (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles));
 }
 
-long Solver::run(const std::string &output_dir)
+long Solver::run(const std::string &output_dir, const std::string &restart_file)
 {
+  if (_m.num_ranks > 1 && (!restart_file.empty() || _m.deck.restart_interval > 0))
+    throw InputError(std::string(restart_file.empty() ? "output.restart_interval" : "--restart") +
+                     ": restart files need a run on one rank (decomposed restarts are not "
+                     "implemented)");
+  std::unique_ptr<RestartReader> restart;
+  if (!restart_file.empty())
+  {
+    restart = std::make_unique<RestartReader>(restart_file, restartDeckHash(_m.deck));
+    loadState(*restart);
+  }
   Outputs out(*this, output_dir);
-  out.begin();
+  out.begin(restart.get());
   try
   {
     while (!reachedEnd())
@@ -293,6 +306,10 @@ long Solver::run(const std::string &output_dir)
   return _cycle;
 }
 
-void Solver::endInterruptedRun(Outputs &out) { out.finishInterrupted(signalName(_interrupted_by)); }
+void Solver::endInterruptedRun(Outputs &out)
+{
+  out.writeRestart();
+  out.finishInterrupted(signalName(_interrupted_by));
+}
 
 } // namespace scpdyn

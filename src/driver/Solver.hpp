@@ -19,6 +19,8 @@ namespace scpdyn
 
 class Outputs;
 class ContactSystem;
+class RestartWriter;
+class RestartReader;
 struct DomainDecomposition;
 
 /// \brief A run that cannot go on (inverted element, non-finite state); the message names
@@ -55,7 +57,13 @@ public:
   /// A signal caught by driver/Interruption.hpp on any rank stops it at the end of the cycle
   /// in whose time-step reduction the signal is first seen, on every rank alike, with complete
   /// outputs of that cycle (interruptedBy() says which signal).
-  long run(const std::string &output_dir);
+  /// With `restart_file` the run continues from that restart file (loadState()).
+  long run(const std::string &output_dir, const std::string &restart_file = "");
+  /// \brief Everything the next cycle reads from the last one (driver/Restart.cpp): one place
+  /// for the state a restart file holds. One rank only.
+  void saveState(RestartWriter &out) const;
+  /// \brief The state saveState() wrote, in place of the initial state set-up built.
+  void loadState(const RestartReader &in);
   /// \brief One cycle of the 13 steps.
   void cycle();
 
@@ -141,9 +149,9 @@ public:
 private:
   void startCycles();
   bool reachedEnd() const;
-  /// \brief The end of an interrupted run, on every rank at the end of the same cycle: the last
-  /// frame, rows and summary.json. A restart file, once scpdyn can restart, is written here:
-  /// the state is then that of a whole cycle on every rank.
+  /// \brief The end of an interrupted run, on every rank at the end of the same cycle: a restart
+  /// file (the state is then that of a whole cycle on every rank), the last frame, rows and
+  /// summary.json.
   void endInterruptedRun(Outputs &out);
   void jointGaugeValues(std::vector<Real> &out) const;
   void ensureNodeCapacity(Index count);
