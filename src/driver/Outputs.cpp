@@ -2,6 +2,8 @@
 
 #include "BuildCommit.hpp"
 #include "driver/Preflight.hpp"
+#include "driver/Restart.hpp"
+#include "io/RestartFile.hpp"
 #include "driver/Solver.hpp"
 
 #include "contact/ContactSystem.hpp"
@@ -243,7 +245,7 @@ Outputs::~Outputs() = default;
 
 bool Outputs::root() const { return _solver.rank() == 0; }
 
-void Outputs::begin()
+void Outputs::begin(const RestartReader *restart)
 {
   const Deck &deck = _solver.deck();
   const DomainDecomposition *dd = _solver.decomposition();
@@ -304,10 +306,7 @@ void Outputs::begin()
   _run_histories = std::make_unique<RunHistories>(_solver);
   if (!root())
   {
-    writeFrame();
-    writeRows();
-    _next_field = deck.field_interval;
-    _next_history = deck.history_interval;
+    startTimes(restart);
     return;
   }
   if (_has_contacts)
@@ -343,10 +342,50 @@ void Outputs::begin()
   _rcforc = _has_contacts ? csv("rcforc.csv", more.contact) : nullptr;
   _spcforc = csv("spcforc.csv", more.reactions);
   _matsum = csv("matsum.csv", more.parts);
-  writeFrame();
-  writeRows();
-  _next_field = deck.field_interval;
-  _next_history = deck.history_interval;
+  startTimes(restart);
+}
+
+void Outputs::startTimes(const RestartReader *restart)
+{
+  const Deck &deck = _solver.deck();
+  if (!restart)
+  {
+    writeFrame();
+    writeRows();
+    _next_field = deck.field_interval;
+    _next_history = deck.history_interval;
+    _next_restart = deck.restart_interval;
+    return;
+  }
+  // the restart cycle's frame and rows belong to the run that wrote the file
+  _last_frame_cycle = _last_row_cycle = _solver.cycles();
+  const std::vector<double> t = restart->reals("outputs.times", 5);
+  _next_field = t[0];
+  _next_history = t[1];
+  _next_restart = t[2];
+  _max_balance_error = t[3];
+  _last_balance_error = t[4];
+}
+
+void Outputs::writeRestart()
+{
+  if (_solver.numRanks() > 1)
+    return;
+  const std::string path = restartFileName(_dir, _solver.cycles());
+  if (!_restart_files.empty() && _restart_files.back() == path)
+    return;
+  RestartWriter w(path, restartDeckHash(_solver.deck()));
+  _solver.saveState(w);
+  w.put("outputs.times", std::vector<double>{_next_field, _next_history, _next_restart,
+                                             _max_balance_error, _last_balance_error});
+  w.commit();
+  _restart_files.push_back(path);
+  while (int(_restart_files.size()) > _solver.deck().restart_keep)
+  {
+    std::error_code ec;
+    std::filesystem::remove(_restart_files.front(), ec);
+    _restart_files.pop_front();
+  }
 }
 
 void Outputs::writeFrame()
@@ -502,6 +541,11 @@ void Outputs::afterCycle()
     writeRows();
     if (deck.history_interval > 0)
       _next_history = nextOutputTime(_next_history, deck.history_interval, t, eps);
+  }
+  if (deck.restart_interval > 0 && t >= _next_restart - eps)
+  {
+    _next_restart = nextOutputTime(_next_restart, deck.restart_interval, t, eps);
+    writeRestart();
   }
   const auto now = std::chrono::steady_clock::now();
   if (root() &&

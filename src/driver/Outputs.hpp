@@ -14,6 +14,7 @@
 #include "io/TextOutput.hpp"
 
 #include <chrono>
+#include <deque>
 #include <memory>
 #include <string>
 
@@ -22,6 +23,7 @@ namespace scpdyn
 
 class Solver;
 struct Deck;
+class RestartReader;
 
 /// \brief What a run will do, estimated before its first cycle from the end time, the first
 /// time step, time.max_cycles, the output intervals and the model's size.
@@ -60,8 +62,13 @@ public:
   /// naming the directory when another live run holds it).
   Outputs(const Solver &solver, const std::string &dir);
   ~Outputs();
-  /// \brief Writes the resolved deck and the initial frame and rows.
-  void begin();
+  /// \brief Writes the resolved deck and the initial frame and rows; with `restart` (the run
+  /// continues from that file) no initial frame and rows, and the output times go on from the
+  /// file's.
+  void begin(const RestartReader *restart = nullptr);
+  /// \brief restart_<cycle>.h5 of the state now (the solver's and these outputs' times), then
+  /// the oldest of this run's restart files beyond output.restart_keep removed.
+  void writeRestart();
   /// \brief Writes whatever is due after a cycle; prints progress.
   void afterCycle();
   /// \brief Final frame and rows, summary.json; `error` non-empty when the run failed.
@@ -72,6 +79,7 @@ public:
 
 private:
   void finishWith(const std::string &status, const std::string &error, const std::string &signal);
+  void startTimes(const RestartReader *restart);
   void writeFrame();
   void writeRows();
   void writeContactFrame();
@@ -89,7 +97,8 @@ private:
   std::unique_ptr<CsvWriter> _history, _gauges;
   std::unique_ptr<RunHistories> _run_histories;
   std::unique_ptr<CsvWriter> _rcforc, _spcforc, _matsum; ///< rank 0, when they have columns
-  double _next_field = 0, _next_history = 0;
+  double _next_field = 0, _next_history = 0, _next_restart = 0;
+  std::deque<std::string> _restart_files; ///< written by this run, oldest first
   long _last_frame_cycle = -1, _last_row_cycle = -1;
   double _max_balance_error = 0, _last_balance_error = 0;
   std::chrono::steady_clock::time_point _start, _last_progress;

@@ -1,4 +1,4 @@
-// scpdyn command line: scpdyn DECK.yaml [-o DIR]; Kokkos flags (--kokkos-...) pass through.
+// scpdyn command line: scpdyn DECK.yaml [-o DIR] [--restart FILE]; Kokkos flags (--kokkos-...) pass through.
 // Exit status: 0 done, 1 internal error, 2 input error, 3 the run failed (outputs kept),
 // 130 / 143 stopped by SIGINT / SIGTERM at the end of a cycle (outputs complete to it).
 // Under mpirun every rank runs this; the mesh is decomposed over the ranks, rank 0 prints and
@@ -20,10 +20,12 @@
 namespace
 {
 const char *kUsage =
-    "usage: scpdyn DECK.yaml [-o DIR] [--kokkos-... options]\n"
+    "usage: scpdyn DECK.yaml [-o DIR] [--restart FILE] [--kokkos-... options]\n"
     "  Explicit Lagrangian finite elements with Simple Common Plane contact.\n"
     "  DECK.yaml   input deck (keys: docs/input.md)\n"
     "  -o DIR      output directory (default: output.directory of the deck, else out/<deck name>)\n"
+    "  --restart FILE  continue the run of DECK.yaml from restart file FILE (written with\n"
+    "              output.restart_interval, or when a signal stopped the run; one rank)\n"
     "  --help      this text;  --version  the version\n"
     "  Threads: OMP_NUM_THREADS=T (or --kokkos-num-threads=T); binding: OMP_PROC_BIND=spread\n"
     "           and OMP_PLACES=threads unless set.\n"
@@ -31,7 +33,8 @@ const char *kUsage =
     "  Signals: SIGINT / SIGTERM stop the run at the end of the cycle, outputs complete\n"
     "           (exit status 130 / 143).\n"
     "  Outputs: fields.xmf/.h5 (ParaView), history.csv, gauges.csv (with gauges),\n"
-    "           contacts.xmf/.h5 (with contact), summary.json, deck.resolved.yaml.\n";
+    "           contacts.xmf/.h5 (with contact), summary.json, deck.resolved.yaml,\n"
+    "           restart_<cycle>.h5 (with output.restart_interval, and on a signal).\n";
 
 std::string deckStem(const std::string &path)
 {
@@ -70,12 +73,20 @@ int main(int argc, char **argv)
   int status = 0;
   {
     const bool root = scpdyn::mpiRank() == 0;
-    std::string deck_path, out_dir;
+    std::string deck_path, out_dir, restart_file;
     for (int i = 1; i < argc; ++i)
     {
       const std::string a = argv[i];
       if (a == "-o" && i + 1 < argc)
         out_dir = argv[++i];
+      else if (a == "--restart" && i + 1 < argc)
+        restart_file = argv[++i];
+      else if (a == "--restart")
+      {
+        if (root)
+          std::fprintf(stderr, "scpdyn: --restart needs a restart file\n%s", kUsage);
+        status = 2;
+      }
       else if (a == "-o")
       {
         if (root)
@@ -124,7 +135,7 @@ int main(int argc, char **argv)
         long cycles = 0;
         {
           const scpdyn::InterruptionHandlers interruption;
-          cycles = solver.run(out_dir);
+          cycles = solver.run(out_dir, restart_file);
         }
         if (const int signal = solver.interruptedBy())
         {

@@ -244,6 +244,8 @@ struct Deck
   Real history_interval = 0;    ///< 0: every cycle
   Real progress_interval = 2.0; ///< wall seconds between progress lines
   Real max_output_bytes = 50e9; ///< refuse a run estimated to write more
+  Real restart_interval = 0;    ///< simulated seconds between restart files; 0: none
+  int restart_keep = 2;         ///< restart files kept (the newest)
 
   std::vector<MaterialSpec> materials;
   std::vector<PartSpec> parts;
@@ -260,7 +262,9 @@ struct Deck
 Deck parseDeck(const std::string &path);
 /// \brief Parse from a YAML string (tests); `path` only names the source in messages.
 Deck parseDeckString(const std::string &yaml_text, const std::string &path);
-/// \brief Write the resolved deck (all defaults filled in) as YAML.
+/// \brief The resolved deck (all defaults filled in) as YAML text.
+std::string resolvedDeckText(const Deck &deck);
+/// \brief Write resolvedDeckText() to `file`.
 void writeResolvedDeck(const Deck &deck, const std::string &file);
 
 } // namespace scpdyn

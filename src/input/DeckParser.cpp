@@ -156,14 +156,23 @@ void parseOutput(const YamlMap &root, Deck &deck, const std::string &stem)
   deck.output_dir = "out/" + stem;
   if (!root.has("output"))
     return;
-  const YamlMap o = root["output"].map(
-      {"directory", "field_interval", "history_interval", "progress_interval", "max_output_bytes"});
+  const YamlMap o =
+      root["output"].map({"directory", "field_interval", "history_interval", "progress_interval",
+                          "max_output_bytes", "restart_interval", "restart_keep"});
   deck.output_dir = o.string("directory", deck.output_dir);
   deck.field_interval = readReal(o, "field_interval", 0, isNonNegative, ">= 0");
   deck.history_interval = readReal(o, "history_interval", 0, isNonNegative, ">= 0");
   deck.progress_interval =
       readReal(o, "progress_interval", deck.progress_interval, isPositive, "> 0");
   deck.max_output_bytes = readReal(o, "max_output_bytes", deck.max_output_bytes, isPositive, "> 0");
+  deck.restart_interval = readReal(o, "restart_interval", 0, isNonNegative, ">= 0");
+  if (o.has("restart_keep"))
+  {
+    const long keep = o["restart_keep"].integer();
+    if (keep < 1 || keep > 1000000)
+      o["restart_keep"].fail("must be an integer >= 1, got " + o["restart_keep"].text());
+    deck.restart_keep = int(keep);
+  }
 }
 
 std::map<std::string, int> parseFunctions(const YamlMap &root, Deck &deck)

@@ -223,7 +223,7 @@ void writeContact(YAML::Emitter &out, const ContactSpec &c)
 
 } // namespace
 
-void writeResolvedDeck(const Deck &deck, const std::string &file)
+std::string resolvedDeckText(const Deck &deck)
 {
   const int dim = deck.dimension;
   YAML::Emitter out;
@@ -269,6 +269,8 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   real(out << YAML::Key << "history_interval" << YAML::Value, deck.history_interval);
   real(out << YAML::Key << "progress_interval" << YAML::Value, deck.progress_interval);
   real(out << YAML::Key << "max_output_bytes" << YAML::Value, deck.max_output_bytes);
+  real(out << YAML::Key << "restart_interval" << YAML::Value, deck.restart_interval);
+  out << YAML::Key << "restart_keep" << YAML::Value << deck.restart_keep;
   out << YAML::EndMap;
 
   beginList(out, "functions", deck.functions.empty());
@@ -328,12 +330,17 @@ void writeResolvedDeck(const Deck &deck, const std::string &file)
   out << YAML::EndMap;
   if (!out.good())
     throw std::runtime_error("writeResolvedDeck: YAML emitter error: " + out.GetLastError());
+  return std::string(out.c_str()) + "\n";
+}
 
+void writeResolvedDeck(const Deck &deck, const std::string &file)
+{
+  const std::string text = resolvedDeckText(deck);
   const std::filesystem::path target(file);
   if (target.has_parent_path())
     std::filesystem::create_directories(target.parent_path());
   std::ofstream os(file);
-  os << out.c_str() << "\n";
+  os << text;
   if (!os)
     throw std::runtime_error("writeResolvedDeck: cannot write " + file);
 }
