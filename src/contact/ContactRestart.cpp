@@ -68,11 +68,10 @@ CpState unpackState(const double *o)
 void ContactSystem::saveState(RestartWriter &out) const
 {
   const size_t n = size_t(_cp.count);
-  out.put("contact.scalars", std::vector<double>{_work, _joint_work, _joint_work_peak,
-                                                 _joint_work_gross, _stored_peak, _slide_work,
-                                                 _slide_work_peak, _dt_prev, _stored,
-                                                 double(_max_count), double(_binned_cycle),
-                                                 _geom.h_max, double(n)});
+  out.put("contact.scalars",
+          std::vector<double>{_work, _joint_work, _joint_work_peak, _joint_work_gross, _stored_peak,
+                              _slide_work, _slide_work_peak, _dt_prev, _stored, double(_max_count),
+                              double(_binned_cycle), _geom.h_max, double(n)});
   out.put("contact.impulse", flatten(_impulse));
   out.put("contact.cp_key1", flatten(_cp.key1));
   out.put("contact.cp_key2", flatten(_cp.key2));
@@ -115,7 +114,8 @@ void ContactSystem::loadState(const RestartReader &in)
   const long nodes = long(_impulse.extent(0));
   unflatten(_impulse, in.reals("contact.impulse", 3 * nodes));
 
-  const std::vector<double> k1 = in.reals("contact.cp_key1", n), k2 = in.reals("contact.cp_key2", n);
+  const std::vector<double> k1 = in.reals("contact.cp_key1", n),
+                            k2 = in.reals("contact.cp_key2", n);
   const std::vector<double> st = in.reals("contact.cp_state", long(n) * kCpStateValues);
   _cp = allocatePlanes(n);
   auto key = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.key);

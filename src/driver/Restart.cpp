@@ -87,12 +87,11 @@ std::string restartFileName(const std::string &dir, long cycle)
 void Solver::saveState(RestartWriter &out) const
 {
   out.put("solver.scalars",
-          std::vector<double>{_time, _dt, _dt_next, double(_cycle), _external_work, _kinetic_mid,
-                              _initial_energy, _energy_scale, _limits.element, _limits.contact,
-                              _forces_zeroed ? 1.0 : 0.0, _last_sums.kinetic,
-                              _last_sums.kinetic_mid, _last_sums.external_work,
-                              _last_sums.momentum[0], _last_sums.momentum[1],
-                              _last_sums.momentum[2]});
+          std::vector<double>{
+              _time, _dt, _dt_next, double(_cycle), _external_work, _kinetic_mid, _initial_energy,
+              _energy_scale, _limits.element, _limits.contact, _forces_zeroed ? 1.0 : 0.0,
+              _last_sums.kinetic, _last_sums.kinetic_mid, _last_sums.external_work,
+              _last_sums.momentum[0], _last_sums.momentum[1], _last_sums.momentum[2]});
   putStep(out, "solver.smallest_step", _smallest_step);
   putStep(out, "solver.next_step", _next_step);
   putStep(out, "solver.first_step", _first_step);

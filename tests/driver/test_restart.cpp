@@ -1,0 +1,243 @@
+// Restart files (README, "Running a deck"; docs/input.md, `output`): a run continued from the
+// restart file written at half time is the uninterrupted run bit for bit at one thread (its
+// rows after the restart cycle and its last frame), on decks whose cycles read contact
+// histories (a sleepy wall with plasticity and a slide line; an implicit and an explicit
+// joint); a restart file of another deck, a truncated one and one of another format version
+// are refused with exit status 2 and a one-line cause.
+#include "TestUtil.hpp"
+
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace scpdyn;
+using namespace scpdyn::test;
+namespace fs = std::filesystem;
+
+namespace
+{
+
+const std::string kWork = std::string(SCPDYN_TEST_WORKDIR) + "/restart";
+const std::string kEnv = "OMP_NUM_THREADS=1 OMP_PROC_BIND=false";
+
+/// The deck tests/parallel/decks/<name>.yaml with restart files at half its end time.
+std::string deckWithRestarts(const std::string &name, const std::string &dir)
+{
+  std::string text = readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + name +
+                              ".yaml");
+  const std::string key = "\ntime: {end: ";
+  const size_t at = text.find(key);
+  EXPECT_NE(at, std::string::npos) << name;
+  const double end = std::stod(text.substr(at + key.size()));
+  std::ostringstream output;
+  output.precision(17);
+  output << "\noutput: {restart_interval: " << 0.5 * end << ", restart_keep: 10}";
+  text.insert(text.find('\n', at + 1), output.str());
+  fs::create_directories(dir);
+  const std::string path = dir + "/" + name + ".yaml";
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// The restart files in `dir`, by ascending cycle.
+std::vector<std::string> restartFiles(const std::string &dir)
+{
+  std::vector<std::pair<long, std::string>> found;
+  const std::regex name(R"(restart_([0-9]+)\.h5)");
+  for (const auto &e : fs::directory_iterator(dir))
+  {
+    std::smatch m;
+    const std::string f = e.path().filename().string();
+    if (std::regex_match(f, m, name))
+      found.push_back({std::stol(m[1].str()), e.path().string()});
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<std::string> out;
+  for (const auto &f : found)
+    out.push_back(f.second);
+  return out;
+}
+
+std::vector<std::string> lines(const std::string &path)
+{
+  std::vector<std::string> out;
+  std::ifstream in(path);
+  for (std::string l; std::getline(in, l);)
+    out.push_back(l);
+  return out;
+}
+
+/// The raw bytes of every dataset under `group` of `file`, by path.
+std::vector<std::pair<std::string, std::vector<char>>> datasetBytes(const std::string &file,
+                                                                     const std::string &group)
+{
+  std::vector<std::pair<std::string, std::vector<char>>> out;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(f, 0) << file;
+  if (f < 0)
+    return out;
+  const hid_t g = H5Gopen2(f, group.c_str(), H5P_DEFAULT);
+  EXPECT_GE(g, 0) << file << ":" << group;
+  struct Visit
+  {
+    hid_t g;
+    std::vector<std::pair<std::string, std::vector<char>>> *out;
+  } visit{g, &out};
+  H5Ovisit(
+      g, H5_INDEX_NAME, H5_ITER_INC,
+      [](hid_t, const char *name, const H5O_info_t *info, void *data) -> herr_t {
+        if (info->type != H5O_TYPE_DATASET)
+          return 0;
+        auto *v = static_cast<Visit *>(data);
+        const hid_t d = H5Dopen2(v->g, name, H5P_DEFAULT);
+        const hid_t type = H5Dget_type(d);
+        const hid_t space = H5Dget_space(d);
+        std::vector<char> bytes(size_t(H5Sget_simple_extent_npoints(space)) * H5Tget_size(type));
+        if (!bytes.empty())
+          H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data());
+        v->out->push_back({name, bytes});
+        H5Sclose(space);
+        H5Tclose(type);
+        H5Dclose(d);
+        return 0;
+      },
+      &visit);
+  H5Gclose(g);
+  H5Fclose(f);
+  return out;
+}
+
+hsize_t frameCount(const std::string &file)
+{
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t g = H5Gopen2(f, "frames", H5P_DEFAULT);
+  H5G_info_t info;
+  H5Gget_info(g, &info);
+  H5Gclose(g);
+  H5Fclose(f);
+  return info.nlinks;
+}
+
+class RestartBitwise : public ::testing::TestWithParam<const char *>
+{
+};
+
+TEST_P(RestartBitwise, ContinuesAsTheUninterruptedRun)
+{
+  const std::string name = GetParam();
+  const std::string dir = kWork + "/bitwise_" + name;
+  fs::remove_all(dir);
+  const std::string deck = deckWithRestarts(name, dir);
+  std::string err;
+  ASSERT_EQ(runBinary(deck + " -o " + dir + "/full", &err, kEnv), 0) << err;
+  const std::vector<std::string> files = restartFiles(dir + "/full");
+  ASSERT_GE(files.size(), 2u) << "one at half time, one at the end";
+  ASSERT_EQ(runBinary(deck + " -o " + dir + "/restarted --restart " + files.front(), &err, kEnv),
+            0)
+      << err;
+  // every row the restarted run writes is the uninterrupted run's row of that cycle, bit for bit
+  for (const char *csv : {"history.csv", "gauges.csv", "rcforc.csv", "matsum.csv", "spcforc.csv"})
+  {
+    const std::string full_path = dir + "/full/" + csv;
+    if (!fs::exists(full_path))
+      continue;
+    const std::vector<std::string> full = lines(full_path);
+    const std::vector<std::string> restarted = lines(dir + "/restarted/" + csv);
+    ASSERT_GE(restarted.size(), 2u) << csv;
+    ASSERT_LE(restarted.size(), full.size()) << csv;
+    EXPECT_EQ(restarted.front(), full.front()) << csv << ": header";
+    const size_t rows = restarted.size() - 1;
+    for (size_t r = 0; r < rows; ++r)
+      EXPECT_EQ(restarted[1 + r], full[full.size() - rows + r]) << csv << " row " << r;
+  }
+  // the last frame: every dataset
+  for (const char *h5 : {"fields.h5", "contacts.h5"})
+  {
+    const std::string full_file = dir + "/full/" + h5, re_file = dir + "/restarted/" + h5;
+    if (!fs::exists(full_file))
+      continue;
+    const auto a = datasetBytes(full_file, "frames/" + std::to_string(frameCount(full_file) - 1));
+    const auto b = datasetBytes(re_file, "frames/" + std::to_string(frameCount(re_file) - 1));
+    ASSERT_FALSE(a.empty()) << h5;
+    ASSERT_EQ(a.size(), b.size()) << h5;
+    for (size_t k = 0; k < a.size(); ++k)
+    {
+      EXPECT_EQ(a[k].first, b[k].first) << h5;
+      EXPECT_TRUE(a[k].second == b[k].second) << h5 << ": " << a[k].first;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(ContactDecks, RestartBitwise,
+                         ::testing::Values("sleepy_wall_2d", "block_impact_2d",
+                                           "explicit_touching_2d"));
+
+TEST(RestartFile, BadFilesAreRefusedWithTheirCause)
+{
+  const std::string dir = kWork + "/bad_files";
+  fs::remove_all(dir);
+  const std::string deck = deckWithRestarts("block_impact_2d", dir);
+  std::string err;
+  ASSERT_EQ(runBinary(deck + " -o " + dir + "/full", &err, kEnv), 0) << err;
+  const std::string good = restartFiles(dir + "/full").front();
+
+  // another deck: the same mesh with another joint aperture
+  std::string other = readText(deck);
+  other.replace(other.find("a: 0.2"), 6, "a: 0.3");
+  const std::string other_deck = dir + "/other.yaml";
+  std::ofstream(other_deck) << other;
+  EXPECT_EQ(runBinary(other_deck + " -o " + dir + "/other --restart " + good, &err, kEnv), 2);
+  EXPECT_NE(err.find("restart file '" + good + "': written by another deck"), std::string::npos)
+      << err;
+
+  // truncated: the first half of the file
+  const std::string cut = dir + "/truncated.h5";
+  {
+    const std::string bytes = readText(good);
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  EXPECT_EQ(runBinary(deck + " -o " + dir + "/cut --restart " + cut, &err, kEnv), 2);
+  EXPECT_NE(err.find("restart file '" + cut + "': "), std::string::npos) << err;
+  EXPECT_NE(err.find("truncated or corrupt"), std::string::npos) << err;
+
+  // another format version
+  const std::string version = dir + "/version.h5";
+  fs::copy_file(good, version);
+  {
+    const hid_t f = H5Fopen(version.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    const hid_t a = H5Aopen(f, "format_version", H5P_DEFAULT);
+    const long v = 999;
+    H5Awrite(a, H5T_NATIVE_LONG, &v);
+    H5Aclose(a);
+    H5Fclose(f);
+  }
+  EXPECT_EQ(runBinary(deck + " -o " + dir + "/version --restart " + version, &err, kEnv), 2);
+  EXPECT_NE(err.find("restart file '" + version + "': file-format version 999"),
+            std::string::npos)
+      << err;
+}
+
+TEST(RestartFile, KeepsTheNewestFiles)
+{
+  const std::string dir = kWork + "/keep";
+  fs::remove_all(dir);
+  std::string text = readText(deckWithRestarts("block_impact_2d", dir));
+  text = std::regex_replace(text, std::regex("restart_keep: 10"), "restart_keep: 1");
+  const std::string deck = dir + "/keep.yaml";
+  std::ofstream(deck) << text;
+  std::string err;
+  ASSERT_EQ(runBinary(deck + " -o " + dir + "/out", &err, kEnv), 0) << err;
+  const std::vector<std::string> files = restartFiles(dir + "/out");
+  ASSERT_EQ(files.size(), 1u);
+  for (const auto &e : fs::directory_iterator(dir + "/out"))
+    EXPECT_EQ(e.path().extension().string() == ".tmp", false) << e.path();
+}
+
+} // namespace
