@@ -2,8 +2,10 @@
 // restart file written at half time is the uninterrupted run bit for bit at one thread (its
 // rows after the restart cycle and its last frame), on decks whose cycles read contact
 // histories (a sleepy wall with plasticity and a slide line; an implicit and an explicit
-// joint); a restart file of another deck, a truncated one and one of another format version
+// joint); a run stopped by SIGTERM leaves a restart file that continues to the uninterrupted
+// run's state; a restart file of another deck, a truncated one and one of another format version
 // are refused with exit status 2 and a one-line cause.
+#include "StartedProcess.hpp"
 #include "TestUtil.hpp"
 
 #include <gtest/gtest.h>
@@ -30,8 +32,8 @@ const std::string kEnv = "OMP_NUM_THREADS=1 OMP_PROC_BIND=false";
 /// The deck tests/parallel/decks/<name>.yaml with restart files at half its end time.
 std::string deckWithRestarts(const std::string &name, const std::string &dir)
 {
-  std::string text = readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + name +
-                              ".yaml");
+  std::string text =
+      readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/" + name + ".yaml");
   const std::string key = "\ntime: {end: ";
   const size_t at = text.find(key);
   EXPECT_NE(at, std::string::npos) << name;
@@ -76,7 +78,7 @@ std::vector<std::string> lines(const std::string &path)
 
 /// The raw bytes of every dataset under `group` of `file`, by path.
 std::vector<std::pair<std::string, std::vector<char>>> datasetBytes(const std::string &file,
-                                                                     const std::string &group)
+                                                                    const std::string &group)
 {
   std::vector<std::pair<std::string, std::vector<char>>> out;
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -139,8 +141,7 @@ TEST_P(RestartBitwise, ContinuesAsTheUninterruptedRun)
   ASSERT_EQ(runBinary(deck + " -o " + dir + "/full", &err, kEnv), 0) << err;
   const std::vector<std::string> files = restartFiles(dir + "/full");
   ASSERT_GE(files.size(), 2u) << "one at half time, one at the end";
-  ASSERT_EQ(runBinary(deck + " -o " + dir + "/restarted --restart " + files.front(), &err, kEnv),
-            0)
+  ASSERT_EQ(runBinary(deck + " -o " + dir + "/restarted --restart " + files.front(), &err, kEnv), 0)
       << err;
   // every row the restarted run writes is the uninterrupted run's row of that cycle, bit for bit
   for (const char *csv : {"history.csv", "gauges.csv", "rcforc.csv", "matsum.csv", "spcforc.csv"})
@@ -219,8 +220,7 @@ TEST(RestartFile, BadFilesAreRefusedWithTheirCause)
     H5Fclose(f);
   }
   EXPECT_EQ(runBinary(deck + " -o " + dir + "/version --restart " + version, &err, kEnv), 2);
-  EXPECT_NE(err.find("restart file '" + version + "': file-format version 999"),
-            std::string::npos)
+  EXPECT_NE(err.find("restart file '" + version + "': file-format version 999"), std::string::npos)
       << err;
 }
 
@@ -238,6 +238,62 @@ TEST(RestartFile, KeepsTheNewestFiles)
   ASSERT_EQ(files.size(), 1u);
   for (const auto &e : fs::directory_iterator(dir + "/out"))
     EXPECT_EQ(e.path().extension().string() == ".tmp", false) << e.path();
+}
+
+TEST(RestartFile, SigtermLeavesAFileThatContinuesTheRun)
+{
+  // The signalled run would take hours (time.end 1 s), so the signal always comes first; the
+  // restarted and the reference runs stop at the same cycle past the restart with
+  // time.max_cycles, which a restart file's deck may change.
+  const std::string dir = kWork + "/sigterm";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string text =
+      readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/block_impact_2d.yaml");
+  const std::string key = "\ntime: {end: ";
+  const size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, text.find('\n', at + 1) - at, key + "1.0, courant: 0.25}");
+  const std::string long_deck = dir + "/long.yaml";
+  std::ofstream(long_deck) << text;
+
+  const Started run = start({SCPDYN_BINARY, long_deck, "-o", dir + "/signalled"},
+                            dir + "/signalled", {}, {"OMP_NUM_THREADS=1", "OMP_PROC_BIND=false"});
+  // generous bounds: they only end a test that would otherwise hang
+  ASSERT_TRUE(waitForFile(run.pid, dir + "/signalled/fields.xmf", 300)) << readText(run.err);
+  kill(run.pid, SIGTERM);
+  const int status = waitForExit(run.pid, 300);
+  ASSERT_TRUE(WIFEXITED(status)) << readText(run.err);
+  ASSERT_EQ(WEXITSTATUS(status), 143) << readText(run.err);
+  const std::vector<std::string> files = restartFiles(dir + "/signalled");
+  ASSERT_EQ(files.size(), 1u) << readText(run.err);
+  const std::string name = fs::path(files[0]).filename().string();
+  const long cycle = std::stol(name.substr(8));
+
+  const size_t t = text.find(key);
+  text.replace(t, text.find('\n', t + 1) - t,
+               key + "1.0, courant: 0.25, max_cycles: " + std::to_string(cycle + 20) + "}");
+  const std::string short_deck = dir + "/short.yaml";
+  std::ofstream(short_deck) << text;
+  std::string err;
+  ASSERT_EQ(runBinary(short_deck + " -o " + dir + "/reference", &err, kEnv), 0) << err;
+  ASSERT_EQ(runBinary(short_deck + " -o " + dir + "/restarted --restart " + files[0], &err, kEnv),
+            0)
+      << err;
+  const std::vector<std::string> ref = lines(dir + "/reference/history.csv");
+  const std::vector<std::string> re = lines(dir + "/restarted/history.csv");
+  ASSERT_GE(re.size(), 2u);
+  EXPECT_EQ(re.back(), ref.back()) << "the last row (cycle " << cycle + 20 << ")";
+  const auto a =
+      datasetBytes(dir + "/reference/fields.h5",
+                   "frames/" + std::to_string(frameCount(dir + "/reference/fields.h5") - 1));
+  const auto b =
+      datasetBytes(dir + "/restarted/fields.h5",
+                   "frames/" + std::to_string(frameCount(dir + "/restarted/fields.h5") - 1));
+  ASSERT_FALSE(a.empty());
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k)
+    EXPECT_TRUE(a[k].second == b[k].second) << a[k].first;
 }
 
 } // namespace
