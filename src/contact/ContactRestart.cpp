@@ -12,7 +12,10 @@ namespace scpdyn
 namespace
 {
 // CpState as doubles: every member in declaration order (ints are exact in a double)
-constexpr int kCpStateValues = 26;
+constexpr int kCpStateValues = 22;
+static_assert(sizeof(CpState) == 20 * sizeof(Real) + 2 * sizeof(int),
+              "a new CpState member needs its place in packState/unpackState and a new "
+              "kRestartFormatVersion");
 
 void packState(const CpState &s, double *o)
 {
@@ -35,8 +38,6 @@ void packState(const CpState &s, double *o)
   for (int d = 0; d < 3; ++d)
     o[k++] = s.V_model[d];
   o[k++] = s.dt_model;
-  o[k++] = 0; // spare: keeps the record a fixed size when a member is added
-  o[k++] = 0;
 }
 
 CpState unpackState(const double *o)

@@ -27,7 +27,7 @@ struct Started
 /// Starts `argv` (argv[0] a path) with this process's environment, less the variables named in
 /// `unset` and with `set` ("NAME=value") added, SIGINT and SIGTERM at their default actions.
 inline Started start(const std::vector<std::string> &argv, const std::string &logs,
-              const std::vector<std::string> &unset, const std::vector<std::string> &set)
+                     const std::vector<std::string> &unset, const std::vector<std::string> &set)
 {
   std::vector<std::string> env;
   for (char **e = environ; *e; ++e)
