@@ -115,6 +115,8 @@ public:
   /// \brief Step 8: the ghost faces' element densities, in the order of setGhostFaces.
   void setGhostDensity(const std::vector<Real> &density);
   bool hasExplicit() const { return _has_explicit; }
+  /// \brief Whether a contact surface has the sleepy option (its CPs can fail).
+  bool hasSleepy() const { return _has_sleepy; }
   /// \brief Whether a sleepy surface switches on a failure measure of its elements (not the
   /// time): its faces then need the measures every cycle (step 8 for the ghost faces).
   bool needsFailureMeasures() const { return _failure_from_elements; }

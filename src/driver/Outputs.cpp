@@ -250,8 +250,7 @@ void Outputs::begin(const RestartReader *restart)
   const Deck &deck = _solver.deck();
   const DomainDecomposition *dd = _solver.decomposition();
   _has_contacts = _solver.contact() != nullptr;
-  _has_sleepy = std::any_of(deck.contact.surfaces.begin(), deck.contact.surfaces.end(),
-                            [](const SurfaceSpec &s) { return s.option == "sleepy"; });
+  _has_sleepy = _has_contacts && _solver.contact()->hasSleepy();
   _material_used.assign(_solver.materialParams().size(), 0);
   {
     auto mat = Kokkos::create_mirror_view_and_copy(HostSpace(), _solver.elements().material);

@@ -41,9 +41,7 @@ Trace run(const std::string &yaml, const std::string &name, MPI_Comm comm)
                "external_work", "momentum_x", "momentum_y", "momentum_z"};
   for (const auto &g : s.gauges())
     t.columns.push_back(g.column);
-  const bool sleepy =
-      std::any_of(s.deck().contact.surfaces.begin(), s.deck().contact.surfaces.end(),
-                  [](const SurfaceSpec &c) { return c.option == "sleepy"; });
+  const bool sleepy = s.contact() && s.contact()->hasSleepy();
   if (sleepy)
     t.columns.push_back("failed_contacts");
   auto row = [&] {
