@@ -154,6 +154,31 @@ KOKKOS_INLINE_FUNCTION JointParams averageParams(const JointParams &p1_in, const
   return r;
 }
 
+/// \brief The contact law of self-contact (11.5): two faces of one part meeting (a crushing or
+/// folding body) are not a joint and not a tie, whatever the surface's option: they meet as a
+/// frictional slide line. Its Coulomb coefficient is the surface's own `mu_*` (slide line,
+/// sleepy), tan(phi1) for the joint options (rock on rock at residual friction), 0 for sticky.
+KOKKOS_INLINE_FUNCTION JointParams selfContactParams(JointParams p)
+{
+  if (p.option == ContactOption::Explicit || p.option == ContactOption::Implicit)
+  {
+    p.mu_s = p.mu_k = kmath::tan(p.phi1);
+    p.mu_dc = 0;
+  }
+  p.option = ContactOption::SlideLine;
+  p.failure_measure = FailureMeasure::None;
+  return p;
+}
+
+/// \brief Parameters of the CP between faces of surfaces with parameters p1, p2 (3.6), of one
+/// mesh part when `same_part` (self-contact, 11.5).
+KOKKOS_INLINE_FUNCTION JointParams planeParams(const JointParams &p1, const JointParams &p2,
+                                               bool same_part)
+{
+  const JointParams p = averageParams(p1, p2);
+  return same_part ? selfContactParams(p) : p;
+}
+
 /// \brief History of one common plane (section 12). Forces are those acting on face 2
 /// (`F = Fn*n + Fs`); face 1 receives `-F`.
 struct CpState

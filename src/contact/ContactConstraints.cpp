@@ -235,7 +235,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
       });
   // ties alone: one linear system; with slide lines, their "no tension" makes it a
   // bound-constrained one (ContactBoundSolve.cpp)
-  const bool sliding = _has_slide || (_has_sleepy && failedCount() > 0); // collective
+  const bool sliding = slideLinesLive() || (_has_sleepy && failedCount() > 0); // collective
   if (sliding)
     boundSolve(nodes, dt);
   else

@@ -19,6 +19,7 @@ struct ContactFaceData
   IndexView num_nodes;
   IndexView element; ///< device element id of the element behind the face
   IndexView surface; ///< contact surface (face-BC id) of the face
+  IndexView part;    ///< mesh part of the element behind: two faces of one part are self-contact
   RealView mass;     ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
   IndexView rigid;   ///< 1 when every node of the face has all velocity components prescribed
   DeviceView<JointParams *> params; ///< per surface, resolved SI parameters
@@ -45,6 +46,7 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
   F.num_nodes = IndexView("contact_face_num_nodes", n);
   F.element = IndexView("contact_face_element", n);
   F.surface = IndexView("contact_face_surface", n);
+  F.part = IndexView("contact_face_part", n);
   F.mass = RealView("contact_face_mass", n);
   F.rigid = IndexView("contact_face_rigid", n);
   F.back = IndexView("contact_face_back", n);
@@ -59,7 +61,7 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
 struct ContactFaceHost
 {
   DeviceView<Index *[kMaxFaceNodes]>::HostMirror nodes;
-  IndexView::HostMirror num_nodes, element, surface, rigid, back, ghost;
+  IndexView::HostMirror num_nodes, element, surface, part, rigid, back, ghost;
   RealView::HostMirror mass;
   DeviceView<long *>::HostMirror key;
 
@@ -67,9 +69,10 @@ struct ContactFaceHost
       : nodes(Kokkos::create_mirror_view(F.nodes)),
         num_nodes(Kokkos::create_mirror_view(F.num_nodes)),
         element(Kokkos::create_mirror_view(F.element)),
-        surface(Kokkos::create_mirror_view(F.surface)), rigid(Kokkos::create_mirror_view(F.rigid)),
-        back(Kokkos::create_mirror_view(F.back)), ghost(Kokkos::create_mirror_view(F.ghost)),
-        mass(Kokkos::create_mirror_view(F.mass)), key(Kokkos::create_mirror_view(F.key))
+        surface(Kokkos::create_mirror_view(F.surface)), part(Kokkos::create_mirror_view(F.part)),
+        rigid(Kokkos::create_mirror_view(F.rigid)), back(Kokkos::create_mirror_view(F.back)),
+        ghost(Kokkos::create_mirror_view(F.ghost)), mass(Kokkos::create_mirror_view(F.mass)),
+        key(Kokkos::create_mirror_view(F.key))
   {
   }
   void copyTo(const ContactFaceData &F) const
@@ -78,6 +81,7 @@ struct ContactFaceHost
     Kokkos::deep_copy(F.num_nodes, num_nodes);
     Kokkos::deep_copy(F.element, element);
     Kokkos::deep_copy(F.surface, surface);
+    Kokkos::deep_copy(F.part, part);
     Kokkos::deep_copy(F.rigid, rigid);
     Kokkos::deep_copy(F.back, back);
     Kokkos::deep_copy(F.ghost, ghost);

@@ -122,7 +122,7 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   // slide lines: their net work, and the kinetic energy of the contact nodes, the scale of the
   // leapfrog lag of either sign that persistent contact books (a quasi-static patch: 1e-20 J)
   Real slide_work = 0, ke_contact = 0;
-  if (_has_slide || _has_sleepy)
+  if (slideLinesLive() || _has_sleepy)
   {
     Kokkos::parallel_reduce(
         "scpdyn::contact::slideWorkSum", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
@@ -151,8 +151,8 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   const Real jw_gross = _joint_work_gross + sums[1];
   const Real sw = _slide_work + sums[4];
   const Real sw_peak = std::max(_slide_work_peak, sw);
-  const bool slide_created =
-      (_has_slide || _has_sleepy) && contactCreatedEnergy(sw, sw_peak + kSlideLag * sums[5], 0, 0);
+  const bool slide_created = (slideLinesLive() || _has_sleepy) &&
+                             contactCreatedEnergy(sw, sw_peak + kSlideLag * sums[5], 0, 0);
   const bool created = bad >= cp.count && sums[3] > 0 &&
                        (contactCreatedEnergy(jw, jw_peak, stored_peak, jw_gross) || slide_created);
   if (created)

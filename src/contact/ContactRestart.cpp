@@ -121,6 +121,7 @@ void ContactSystem::loadState(const RestartReader &in)
   _cp = allocatePlanes(n);
   auto key = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.key);
   auto surface = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.surface);
+  auto part = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.part);
   auto fparams = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.params);
   auto face1 = Kokkos::create_mirror_view(_cp.face1), face2 = Kokkos::create_mirror_view(_cp.face2);
   auto key1 = Kokkos::create_mirror_view(_cp.key1), key2 = Kokkos::create_mirror_view(_cp.key2);
@@ -140,7 +141,8 @@ void ContactSystem::loadState(const RestartReader &in)
     key2(p) = long(k2[size_t(p)]);
     face1(p) = faceOf(key1(p));
     face2(p) = faceOf(key2(p));
-    params(p) = averageParams(fparams(surface(face1(p))), fparams(surface(face2(p))));
+    params(p) = planeParams(fparams(surface(face1(p))), fparams(surface(face2(p))),
+                            part(face1(p)) == part(face2(p)));
     state(p) = unpackState(&st[size_t(p) * kCpStateValues]);
   }
   Kokkos::deep_copy(_cp.face1, face1);
@@ -164,6 +166,7 @@ void ContactSystem::loadState(const RestartReader &in)
   const std::vector<double> approach = in.reals("contact.cp_approach");
   _approach = RealView("cp_approach", approach.size());
   unflatten(_approach, approach);
+  countPlanes(); // the self-contact CPs: whether the slide-line solve runs before the next search
 }
 
 } // namespace scpdyn

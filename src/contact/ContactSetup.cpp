@@ -162,6 +162,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
     hf.num_nodes(i) = f.num_nodes;
     hf.element(i) = d;
     hf.surface(i) = surface_of[chosen[i]];
+    hf.part(i) = f.part;
     // (10.1): the element's mass per node times the face's nodes
     hf.mass(i) = h_emass(d) * Real(f.num_nodes) / Real(nodesPerElement(type));
     int prescribed = 0;

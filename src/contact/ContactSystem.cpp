@@ -61,7 +61,8 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
     _has_sleepy = _has_sleepy || o == "sleepy";
     _failure_from_elements =
         _failure_from_elements || (o == "sleepy" && spec.failure_measure != "time");
-    _has_friction = _has_friction || ((o == "slide_line" || o == "sleepy") && spec.mu_static > 0);
+    _has_friction = _has_friction || ((o == "slide_line" || o == "sleepy") && spec.mu_static > 0) ||
+                    ((o == "explicit" || o == "implicit") && spec.phi1 > 0); // self-contact, 11.5
     _surface_labels.push_back("'" + deck.contact.surfaces[s].name + "' (option " + o + ")");
   }
   _damage_slot = toDevice(std::vector<Index>(in.damage_slot.begin(), in.damage_slot.end()),
@@ -118,7 +119,8 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
         cp.face2(q) = f2;
         cp.key1(q) = F.key(f1);
         cp.key2(q) = F.key(f2);
-        cp.params(q) = averageParams(F.params(F.surface(f1)), F.params(F.surface(f2)));
+        cp.params(q) =
+            planeParams(F.params(F.surface(f1)), F.params(F.surface(f2)), F.part(f1) == F.part(f2));
         const Index o = findPair(old.key1, old.key2, old.count, F.key(f1), F.key(f2));
         if (o >= 0)
         { // (3.3) the same face pair keeps its CP and history
@@ -144,15 +146,33 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
         cp.state(q) = initialCpState(u0, g.n, g.Ac); // (12), (D12)
       });
   _cp = cp;
-  Index owned = cp.count;
+  countPlanes();
+}
+
+void ContactSystem::countPlanes()
+{
+  const ContactFaceData F = _faces;
+  const CommonPlaneData cp = _cp;
+  // the CPs counted on this rank (decomposed: those of its face 1), and the self-contact CPs
+  // among them: slide lines, whatever the surfaces' options (11.5)
+  Index owned = 0, self = 0;
+  Kokkos::parallel_reduce(
+      "scpdyn::contact::ownedPlanes", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+      KOKKOS_LAMBDA(const Index q, Index &n) { n += F.ghost(cp.face1(q)) == 0 ? 1 : 0; }, owned);
+  Kokkos::parallel_reduce(
+      "scpdyn::contact::selfContactPlanes", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+      KOKKOS_LAMBDA(const Index q, Index &n) {
+        n += F.ghost(cp.face1(q)) == 0 && F.part(cp.face1(q)) == F.part(cp.face2(q)) ? 1 : 0;
+      },
+      self);
   if (_comm.sum)
   {
-    Kokkos::parallel_reduce(
-        "scpdyn::contact::ownedPlanes", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-        KOKKOS_LAMBDA(const Index q, Index &n) { n += F.ghost(cp.face1(q)) == 0 ? 1 : 0; }, owned);
-    owned = Index(globalSum(Real(owned)));
+    Real counts[2] = {Real(owned), Real(self)};
+    _comm.sum(counts, 2);
+    owned = Index(counts[0]), self = Index(counts[1]);
   }
   _max_count = std::max(_max_count, owned);
+  _self_contact_planes = self;
 }
 
 Real ContactSystem::firstTimeStep(const NodeFields &nodes, const ElementFields &elements,
@@ -268,6 +288,7 @@ void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Inde
     const GhostFaceDesc &g = take_own ? own[i] : ghosts[j];
     hf.num_nodes(f) = g.num_nodes;
     hf.surface(f) = g.surface;
+    hf.part(f) = g.part;
     hf.mass(f) = g.mass;
     hf.rigid(f) = g.rigid;
     hf.back(f) = g.back;

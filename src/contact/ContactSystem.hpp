@@ -128,6 +128,10 @@ public:
   void setGhostFailure(int column, const std::vector<Real> &measure);
   /// \brief Sleepy CPs that have switched to sliding, over all ranks (collective).
   Index failedCount() const;
+  /// \brief The elements eroded this cycle (global element ids, ascending, the same list on
+  /// every rank): their faces leave the contact, and the faces they expose join their part's
+  /// surfaces, at the next search (docs/theory.md 11.6).
+  void elementsEroded(const std::vector<Index> &global_elements);
   /// \brief Per ghost face (order of setGhostFaces): 1 if a live CP uses it. Until the next
   /// search only these need fresh ghost data.
   std::vector<char> ghostFacesInPlanes() const;
@@ -175,6 +179,9 @@ private:
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
   void resizeNodeArrays(size_t n);
   Real globalSum(Real local) const;
+  /// \brief After a search or a restore: the CP count's peak and the self-contact CPs
+  /// (collective in a decomposed run).
+  void countPlanes();
   /// fn(face, its index among the ghosts of setGhostFaces) for every ghost face
   template <class Fn>
   void eachGhostFace(Fn &&fn) const
@@ -203,6 +210,9 @@ private:
   long _binned_cycle = -1;
   bool _has_constraints = false, _has_explicit = false;
   bool _has_slide = false, _has_friction = false;
+  Index _self_contact_planes = 0; ///< self-contact CPs (11.5) since the last search, all ranks
+  /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
+  bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }
   bool _has_sleepy = false;            ///< a sleepy surface: its CPs switch (releaseSleepy)
   bool _failure_from_elements = false; ///< ... on a measure of their elements, not the time
   IndexView _damage_slot;              ///< per material: its history slot of damage, or -1
