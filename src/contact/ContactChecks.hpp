@@ -7,7 +7,13 @@
 namespace scpdyn
 {
 
-/// \brief Closure, in apertures, beyond which a joint counts as diverged [-].
+/// \brief Closure beyond the joint's zero-force closure u_z, in apertures, past which a joint
+/// counts as diverged [-].
+///
+/// Measured from u_z, not from 0: u_z is where the joint's force line starts (D10-D12), and a CP
+/// created on faces that already overlap (D12 forgives the overlap, u_z = u0) or an open joint
+/// whose faces moved far (bricks that slid or rotated past each other, and meet again) has
+/// u = u_z plus what it has closed since: a large u at zero force is not a diverged joint.
 ///
 /// Not 1: with the modulus cap (6.2, D8) the closure is not bounded by a, and stable
 /// explicit runs pass it for a step or two (bar1d.py's explicit Fig. 2 references at C_safe =
@@ -70,7 +76,7 @@ KOKKOS_INLINE_FUNCTION int checkCp(const JointParams &p, const CpState &s, const
   if (!finite)
     return CpCheckNonFinite;
   const bool vanishing = !(Ac >= kVanishingArea * contact_math::min(A1, A2));
-  if (joint && active && !vanishing && s.u > kDivergedClosure * p.a)
+  if (joint && active && !vanishing && s.u - s.u_z > kDivergedClosure * p.a)
     return CpCheckClosure;
   return CpCheckOk;
 }

@@ -20,8 +20,11 @@ struct ContactFaceData
   IndexView element; ///< device element id of the element behind the face
   IndexView surface; ///< contact surface (face-BC id) of the face
   IndexView part;    ///< mesh part of the element behind: two faces of one part are self-contact
-  RealView mass;     ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
-  IndexView rigid;   ///< 1 when every node of the face has all velocity components prescribed
+  /// 1: the face is searched; 0: an interior face erosion has not exposed, or a face of an
+  /// eroded element (11.6)
+  IndexView active;
+  RealView mass;   ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
+  IndexView rigid; ///< 1 when every node of the face has all velocity components prescribed
   DeviceView<JointParams *> params; ///< per surface, resolved SI parameters
   IndexView nodes_used;             ///< the distinct nodes of all contact faces, ascending
   /// 1D only: the other node of the element behind the (point) face, which orients the face
@@ -47,6 +50,7 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
   F.element = IndexView("contact_face_element", n);
   F.surface = IndexView("contact_face_surface", n);
   F.part = IndexView("contact_face_part", n);
+  F.active = IndexView("contact_face_active", n);
   F.mass = RealView("contact_face_mass", n);
   F.rigid = IndexView("contact_face_rigid", n);
   F.back = IndexView("contact_face_back", n);
@@ -61,7 +65,7 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
 struct ContactFaceHost
 {
   DeviceView<Index *[kMaxFaceNodes]>::HostMirror nodes;
-  IndexView::HostMirror num_nodes, element, surface, part, rigid, back, ghost;
+  IndexView::HostMirror num_nodes, element, surface, part, active, rigid, back, ghost;
   RealView::HostMirror mass;
   DeviceView<long *>::HostMirror key;
 
@@ -70,9 +74,9 @@ struct ContactFaceHost
         num_nodes(Kokkos::create_mirror_view(F.num_nodes)),
         element(Kokkos::create_mirror_view(F.element)),
         surface(Kokkos::create_mirror_view(F.surface)), part(Kokkos::create_mirror_view(F.part)),
-        rigid(Kokkos::create_mirror_view(F.rigid)), back(Kokkos::create_mirror_view(F.back)),
-        ghost(Kokkos::create_mirror_view(F.ghost)), mass(Kokkos::create_mirror_view(F.mass)),
-        key(Kokkos::create_mirror_view(F.key))
+        active(Kokkos::create_mirror_view(F.active)), rigid(Kokkos::create_mirror_view(F.rigid)),
+        back(Kokkos::create_mirror_view(F.back)), ghost(Kokkos::create_mirror_view(F.ghost)),
+        mass(Kokkos::create_mirror_view(F.mass)), key(Kokkos::create_mirror_view(F.key))
   {
   }
   void copyTo(const ContactFaceData &F) const
@@ -82,6 +86,7 @@ struct ContactFaceHost
     Kokkos::deep_copy(F.element, element);
     Kokkos::deep_copy(F.surface, surface);
     Kokkos::deep_copy(F.part, part);
+    Kokkos::deep_copy(F.active, active);
     Kokkos::deep_copy(F.rigid, rigid);
     Kokkos::deep_copy(F.back, back);
     Kokkos::deep_copy(F.ghost, ghost);
@@ -97,6 +102,8 @@ struct ContactFaceInfo
   Index mesh_element = -1;
   int local_face = -1;
   int part = -1; ///< mesh part index
+  /// an interior face (11.6): the global id of the element on its other side, else -1
+  Index twin = -1;
 };
 
 /// \brief The live common planes. `face1 < face2` (face indices), sorted by (face1, face2), so a

@@ -193,8 +193,9 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
     else if (!finite)
       os << describe(bad) << " has a non-finite force or closure";
     else
-      os << describe(bad) << ": closure u = " << s.u << " m passed " << kDivergedClosure
-         << " apertures (a = " << P.a << " m; normal stress " << s.Fn / area(bad) << " Pa)";
+      os << describe(bad) << ": closure u - u_z = " << s.u - s.u_z << " m passed "
+         << kDivergedClosure << " apertures (a = " << P.a << " m; normal stress "
+         << s.Fn / area(bad) << " Pa)";
     ContactFailure failure;
     failure.failed = true;
     failure.message = os.str() + advice(P);

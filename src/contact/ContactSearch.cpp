@@ -165,7 +165,8 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const SearchData &S, Index i, Index j, c
   const ContactFaceData &F = S.F;
   const FaceGeometryData &G = S.G;
   // ghost-ghost pairs belong to other ranks (2.2, parallel rules)
-  if (!G.valid(i) || !G.valid(j) || F.element(i) == F.element(j) || (F.ghost(i) && F.ghost(j)))
+  if (!G.valid(i) || !G.valid(j) || F.element(i) == F.element(j) || (F.ghost(i) && F.ghost(j)) ||
+      !F.active(i) || !F.active(j))
     return false;
   Real side_i = 0, side_j = 0;
   for (int d = 0; d < 3; ++d)

@@ -85,14 +85,19 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
 {
   const Deck &deck = *in.deck;
   const HostMesh &mesh = *in.mesh;
-  const std::vector<HostFace> &external = *in.external_faces;
+  // the external faces, then the interior faces of eroding parts (11.6): index k < n_external
+  // is an external face
+  std::vector<HostFace> faces = *in.external_faces;
+  const size_t n_external = faces.size();
+  if (in.interior_faces)
+    faces.insert(faces.end(), in.interior_faces->begin(), in.interior_faces->end());
 
   // external faces by their node set, so faces of any face set (box, part, gmsh group) map back
   std::map<std::array<Index, kMaxFaceNodes>, size_t> by_nodes;
-  for (size_t k = 0; k < external.size(); ++k)
-    by_nodes[sortedNodes(external[k])] = k;
+  for (size_t k = 0; k < n_external; ++k)
+    by_nodes[sortedNodes(faces[k])] = k;
 
-  std::vector<int> surface_of(external.size(), -1);
+  std::vector<int> surface_of(faces.size(), -1);
   for (size_t s = 0; s < deck.contact.surfaces.size(); ++s)
   {
     const SurfaceSpec &spec = deck.contact.surfaces[s];
@@ -105,8 +110,8 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
     };
     if (!spec.part.empty())
     {
-      for (size_t k = 0; k < external.size(); ++k)
-        if (partMatches(mesh.parts[size_t(external[k].part)].name, spec.part))
+      for (size_t k = 0; k < faces.size(); ++k)
+        if (partMatches(mesh.parts[size_t(faces[k].part)].name, spec.part))
           take(k);
       if (globalCount(in, selected) == 0)
         throw InputError(key + ".part: no external face belongs to a part matching '" + spec.part +
@@ -122,7 +127,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
         const auto e = by_nodes.find(sortedNodes(f));
         if (e == by_nodes.end())
           throw InputError(key + ".face_set: face set '" + spec.face_set +
-                           "' holds a face that is not an external element face");
+                           "' holds a face that is not an faces element face");
         take(e->second);
       }
       if (globalCount(in, selected) == 0)
@@ -131,14 +136,14 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   }
 
   std::vector<size_t> chosen;
-  for (size_t k = 0; k < external.size(); ++k)
+  for (size_t k = 0; k < faces.size(); ++k)
     if (surface_of[k] >= 0)
       chosen.push_back(k);
   auto globalElement = [&](Index e) {
     return in.global_element ? (*in.global_element)[size_t(e)] : e;
   };
   auto keyOf = [&](size_t k) {
-    return long(globalElement(external[k].element)) * 8 + external[k].local_face;
+    return long(globalElement(faces[k].element)) * 8 + faces[k].local_face;
   };
   std::sort(chosen.begin(), chosen.end(), [&](size_t a, size_t b) { return keyOf(a) < keyOf(b); });
 
@@ -156,7 +161,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   info.assign(nf, ContactFaceInfo());
   for (size_t i = 0; i < nf; ++i)
   {
-    const HostFace &f = external[chosen[i]];
+    const HostFace &f = faces[chosen[i]];
     const Index d = (*in.host_to_device_element)[size_t(f.element)];
     const ElementType type = mesh.parts[size_t(f.part)].type;
     hf.num_nodes(i) = f.num_nodes;
@@ -177,6 +182,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
       }
     }
     hf.rigid(i) = prescribed == f.num_nodes * dim ? 1 : 0;
+    hf.active(i) = f.twin < 0 ? 1 : 0; // an interior face waits for its twin to erode
     hf.back(i) = -1;
     if (type == ElementType::Line2)
     { // 1D point face: the element's other node orients it
@@ -185,7 +191,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
       hf.back(i) = part.connectivity[size_t(2 * e + (1 - f.local_face))];
     }
     hf.key(i) = keyOf(chosen[i]);
-    info[i] = {keyOf(chosen[i]), globalElement(f.element), f.local_face, f.part};
+    info[i] = {keyOf(chosen[i]), globalElement(f.element), f.local_face, f.part, f.twin};
   }
   std::sort(used.begin(), used.end());
   used.erase(std::unique(used.begin(), used.end()), used.end());

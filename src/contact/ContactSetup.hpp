@@ -25,6 +25,9 @@ struct ContactMeshInput
   const Deck *deck = nullptr;
   const HostMesh *mesh = nullptr;
   const std::vector<HostFace> *external_faces = nullptr; ///< extractExternalFaces()
+  /// the interior faces of the parts whose elements can erode (interiorFaces(), twins as global
+  /// element ids), or null: a `part` surface takes them too, inactive until exposed (11.6)
+  const std::vector<HostFace> *interior_faces = nullptr;
   const std::map<std::string, std::vector<HostFace>> *face_sets = nullptr;
   const std::vector<Index> *host_to_device_element = nullptr;
   NodeFields nodes;    ///< mass and velocity-BC flags are read

@@ -249,6 +249,7 @@ std::vector<GhostFaceDesc> ContactSystem::ownFaces() const
   auto mass = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.mass);
   auto rigid = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.rigid);
   auto back = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.back);
+  auto active = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.active);
   std::vector<GhostFaceDesc> out(size_t(_own.count));
   for (Index f = 0; f < _own.count; ++f)
   {
@@ -258,6 +259,7 @@ std::vector<GhostFaceDesc> ContactSystem::ownFaces() const
     g.surface = surface(f);
     g.num_nodes = nn(f);
     g.rigid = rigid(f);
+    g.active = active(f);
     g.mass = mass(f);
     for (int a = 0; a < kMaxFaceNodes; ++a)
       g.nodes[a] = nodes(f, a);
@@ -289,6 +291,7 @@ void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Inde
     hf.num_nodes(f) = g.num_nodes;
     hf.surface(f) = g.surface;
     hf.part(f) = g.part;
+    hf.active(f) = g.active;
     hf.mass(f) = g.mass;
     hf.rigid(f) = g.rigid;
     hf.back(f) = g.back;

@@ -132,6 +132,12 @@ public:
   /// every rank): their faces leave the contact, and the faces they expose join their part's
   /// surfaces, at the next search (docs/theory.md 11.6).
   void elementsEroded(const std::vector<Index> &global_elements);
+  /// \brief On a search cycle, before the search (and before the ghost-face exchange): the
+  /// faces of the elements eroded since the last search leave, the faces they expose join.
+  /// Returns whether the own faces' activity changed (ownFaces() then tells other ranks).
+  bool applyErosion();
+  /// \brief The eroded elements the contact knows of (global ids, ascending; restart).
+  const std::vector<Index> &erodedElements() const { return _eroded; }
   /// \brief Per ghost face (order of setGhostFaces): 1 if a live CP uses it. Until the next
   /// search only these need fresh ghost data.
   std::vector<char> ghostFacesInPlanes() const;
@@ -210,7 +216,9 @@ private:
   long _binned_cycle = -1;
   bool _has_constraints = false, _has_explicit = false;
   bool _has_slide = false, _has_friction = false;
-  Index _self_contact_planes = 0; ///< self-contact CPs (11.5) since the last search, all ranks
+  std::vector<Index> _eroded;         ///< eroded elements, global ids, ascending (11.6)
+  std::vector<Index> _eroded_pending; ///< ... eroded since the last search
+  Index _self_contact_planes = 0;     ///< self-contact CPs (11.5) since the last search, all ranks
   /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
   bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }
   bool _has_sleepy = false;            ///< a sleepy surface: its CPs switch (releaseSleepy)

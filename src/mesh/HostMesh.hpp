@@ -32,6 +32,9 @@ struct HostFace
   Index element = -1; ///< global element id (parts numbered consecutively in part order)
   int local_face = -1;
   int part = -1;
+  /// an interior face (interiorFaces()): the global id of the element on its other side; -1
+  /// for an external face
+  Index twin = -1;
 };
 
 /// \brief All meshes of a problem plus named node and face sets.

@@ -163,58 +163,92 @@ int faceLocalNode(ElementType t, int f, int i)
   return -1;
 }
 
-std::vector<HostFace> extractExternalFaces(const HostMesh &mesh)
+namespace
 {
-  struct Entry
-  {
-    int part;
-    std::array<Index, kMaxFaceNodes> key;
-    HostFace face;
-  };
-  std::vector<Entry> entries;
-  entries.reserve(size_t(mesh.numElements()) * 6);
+
+/// Every face of every element of the parts with `wanted[part]` (all parts when empty), in
+/// (element, local face) order, and how many faces of the same part have the same nodes.
+struct ElementFaces
+{
+  std::vector<HostFace> faces;
+  std::vector<size_t> group_size; ///< per face: the faces with its nodes in its part (itself too)
+  std::vector<size_t> partner;    ///< per face of a group of two: the other one
+};
+
+ElementFaces elementFaces(const HostMesh &mesh, const std::vector<char> &wanted)
+{
+  ElementFaces out;
+  std::vector<std::pair<int, std::array<Index, kMaxFaceNodes>>> keys;
   Index element = 0;
   for (int p = 0; p < int(mesh.parts.size()); ++p)
   {
     const HostPart &part = mesh.parts[p];
+    if (!wanted.empty() && !wanted[size_t(p)])
+    {
+      element += part.numElements();
+      continue;
+    }
     const int npe = nodesPerElement(part.type), npf = nodesPerFace(part.type);
     for (Index e = 0; e < part.numElements(); ++e, ++element)
       for (int f = 0; f < facesPerElement(part.type); ++f)
       {
-        Entry en{p, {{-1, -1, -1, -1}}, HostFace{}};
-        en.face.num_nodes = npf;
-        en.face.element = element;
-        en.face.local_face = f;
-        en.face.part = p;
+        HostFace face;
+        face.num_nodes = npf;
+        face.element = element;
+        face.local_face = f;
+        face.part = p;
         for (int i = 0; i < npf; ++i)
-          en.face.nodes[i] = part.connectivity[size_t(e) * npe + faceLocalNode(part.type, f, i)];
-        en.key = en.face.nodes;
-        std::sort(en.key.begin(), en.key.begin() + npf);
-        entries.push_back(en);
+          face.nodes[i] = part.connectivity[size_t(e) * npe + faceLocalNode(part.type, f, i)];
+        std::array<Index, kMaxFaceNodes> key = face.nodes;
+        std::sort(key.begin(), key.begin() + npf);
+        out.faces.push_back(face);
+        keys.push_back({p, key});
       }
   }
-  // Entries are created in (element, face) order; sort a permutation by (part, key) so the
-  // output keeps that order.
-  std::vector<size_t> perm(entries.size());
+  // sort a permutation by (part, key), so the faces keep their (element, face) order
+  std::vector<size_t> perm(keys.size());
   std::iota(perm.begin(), perm.end(), size_t(0));
-  auto less = [&](size_t a, size_t b) {
-    return std::tie(entries[a].part, entries[a].key) < std::tie(entries[b].part, entries[b].key);
-  };
+  auto less = [&](size_t a, size_t b) { return keys[a] < keys[b]; };
   std::sort(perm.begin(), perm.end(), less);
-  std::vector<char> external(entries.size(), 0);
+  out.group_size.assign(keys.size(), 0);
+  out.partner.assign(keys.size(), 0);
   for (size_t i = 0; i < perm.size();)
   {
     size_t j = i + 1;
     while (j < perm.size() && !less(perm[i], perm[j]))
       ++j;
-    if (j == i + 1)
-      external[perm[i]] = 1;
+    for (size_t k = i; k < j; ++k)
+      out.group_size[perm[k]] = j - i;
+    if (j == i + 2)
+      out.partner[perm[i]] = perm[i + 1], out.partner[perm[i + 1]] = perm[i];
     i = j;
   }
+  return out;
+}
+
+} // namespace
+
+std::vector<HostFace> extractExternalFaces(const HostMesh &mesh)
+{
+  const ElementFaces all = elementFaces(mesh, {});
   std::vector<HostFace> out;
-  for (size_t i = 0; i < entries.size(); ++i)
-    if (external[i])
-      out.push_back(entries[i].face);
+  for (size_t i = 0; i < all.faces.size(); ++i)
+    if (all.group_size[i] == 1)
+      out.push_back(all.faces[i]);
+  return out;
+}
+
+std::vector<HostFace> interiorFaces(const HostMesh &mesh, const std::vector<char> &parts)
+{
+  const ElementFaces all = elementFaces(mesh, parts);
+  std::vector<HostFace> out;
+  for (size_t i = 0; i < all.faces.size(); ++i)
+    if (all.group_size[i] == 2)
+    {
+      HostFace f = all.faces[i];
+      f.twin = all.faces[all.partner[i]].element;
+      out.push_back(f);
+    }
   return out;
 }
 

@@ -43,6 +43,11 @@ int faceLocalNode(ElementType t, int f, int i);
 /// globally in part order; the result is sorted by element, then local face.
 std::vector<HostFace> extractExternalFaces(const HostMesh &mesh);
 
+/// \brief The faces two elements of one part share, of the parts with `parts[p]` != 0: each
+/// face once per element (outward for it), with `twin` = the other element. In (element, local
+/// face) order. They are the faces element erosion can expose (docs/theory.md 11.6).
+std::vector<HostFace> interiorFaces(const HostMesh &mesh, const std::vector<char> &parts);
+
 /// \brief Merge nodes of the listed parts that lie within `tolerance` (m) of each other
 /// (transitively). The lowest id of a group is kept, all nodes of the mesh are renumbered
 /// compactly in their old order, and connectivity, node sets and face sets are updated.

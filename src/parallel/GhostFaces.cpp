@@ -155,7 +155,7 @@ void GhostFaces::rebuild(const std::vector<GhostFaceDesc> &faces,
               continue;
             near = std::binary_search(theirs.begin(), theirs.end(), i + n[0] * (k + n[1] * l));
           }
-      if (!near)
+      if (!near || !faces[f].active)
         continue;
       _send_face.push_back(Index(f));
       const GhostFaceDesc &g = faces[f];

@@ -37,8 +37,9 @@ struct GhostFaceDesc
   int part = -1;    ///< mesh part
   int surface = -1; ///< contact surface (face-BC id)
   int num_nodes = 0;
-  int rigid = 0;                     ///< every node component prescribed (10.1)
-  Real mass = 0;                     ///< face mass M_f [kg]
+  int rigid = 0;  ///< every node component prescribed (10.1)
+  int active = 1; ///< 0: not searched now (erosion, 11.6): never sent as a ghost face
+  Real mass = 0;  ///< face mass M_f [kg]
   Index nodes[4] = {-1, -1, -1, -1}; ///< local node id, or ghost slot (>= num_local) on receipt
   /// 1D: the other node of the element behind the point face (orients it), else -1; numbered
   /// like `nodes`

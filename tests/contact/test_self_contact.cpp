@@ -92,8 +92,8 @@ initial_conditions:
 contact:
   search_interval: 1
   surfaces:
-    - )" + surface +
-         "\n";
+    - )" +
+         surface + "\n";
 }
 
 /// How far a node of the left block's facing side is past the right block's facing side, at
@@ -117,8 +117,8 @@ double penetration(const Solver &s)
       if (p.first >= right[k].first && p.first <= right[k + 1].first)
       {
         const double t = (p.first - right[k].first) / (right[k + 1].first - right[k].first);
-        worst = std::max(worst, p.second - (right[k].second + t * (right[k + 1].second -
-                                                                   right[k].second)));
+        worst = std::max(
+            worst, p.second - (right[k].second + t * (right[k + 1].second - right[k].second)));
       }
   return worst;
 }
@@ -129,7 +129,7 @@ struct BlocksRun
   double p0[3] = {0, 0, 0}, p1[3] = {0, 0, 0};
   double balance = 0, overlap = -1e300;
   double right_px = 0, right_py = 0; ///< the right block's momentum at the end [N s/m]
-  Index cross_cps = 0;                ///< CPs between the two blocks, at the end
+  Index cross_cps = 0;               ///< CPs between the two blocks, at the end
 };
 
 BlocksRun runBlocks(const std::string &name, bool one_group, const std::string &surface,
@@ -210,10 +210,9 @@ TEST(SelfContact, OnePartUnderAJointSurfaceMeetsItselfAsTheTwoPartSlideLine)
   const BlocksRun self = runBlocks("self_contact_one_part", true, joint);
   Solver order(deckFromText(
       blocksDeck(writeWorkFile("self_contact_order.msh", blocksMesh(true)), joint), "order"));
-  const BlocksRun slide = runBlocks("self_contact_two_parts_slide", false,
-                                    "{name: all, part: blocks, option: slide_line, mu_static: " +
-                                        mu + "}",
-                                    &order);
+  const BlocksRun slide =
+      runBlocks("self_contact_two_parts_slide", false,
+                "{name: all, part: blocks, option: slide_line, mu_static: " + mu + "}", &order);
   const BlocksRun law = runBlocks("self_contact_two_parts_joint", false, joint, &order);
 
   EXPECT_GT(self.cross_cps, 0); // the blocks touch at the end (or the comparison says little)

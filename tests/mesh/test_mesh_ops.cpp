@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <cmath>
 
 using namespace scpdyn;
@@ -121,6 +123,32 @@ TEST(MeshOps, FacesBetweenPartsAreExternalForBoth)
   expectOutward(m, faces, 1.0);
   // the interface x = 1 holds 4 faces of each part
   EXPECT_EQ(facesInBox(faces, m, {{1, 0, 0}}, {{1, 1, 1}}, 1e-12).size(), 8u);
+}
+
+// The faces erosion can expose (docs/theory.md 11.6): every face two elements of a selected
+// part share, once per element, with the other element as its twin; none of an unselected part.
+TEST(MeshOps, InteriorFacesComeInTwinPairsOfSelectedParts)
+{
+  HostMesh m;
+  appendBlock(m, "a", ElementType::Hex8, {{3, 2, 2}}, {{0, 0, 0}}, {{3, 2, 2}});
+  appendBlock(m, "b", ElementType::Hex8, {{2, 2, 2}}, {{5, 0, 0}}, {{2, 2, 2}});
+  const auto faces = interiorFaces(m, {1, 0});
+  // 3 x 2 x 2 hexes share 2*2*2 + 3*1*2 + 3*2*1 = 20 faces, each seen from both sides
+  ASSERT_EQ(faces.size(), 40u);
+  std::map<std::pair<Index, Index>, int> seen;
+  for (const HostFace &f : faces)
+  {
+    EXPECT_EQ(f.part, 0);
+    ASSERT_GE(f.twin, 0);
+    EXPECT_NE(f.twin, f.element);
+    ++seen[{std::min(f.element, f.twin), std::max(f.element, f.twin)}];
+  }
+  EXPECT_EQ(seen.size(), 20u);
+  for (const auto &kv : seen)
+    EXPECT_EQ(kv.second, 2); // once from each element
+  EXPECT_TRUE(interiorFaces(m, {0, 0}).empty());
+  for (const HostFace &f : extractExternalFaces(m))
+    EXPECT_EQ(f.twin, -1);
 }
 
 TEST(MeshOps, MergeRemovesExactlyTheInterfaceNodes)
