@@ -76,24 +76,14 @@ ContactPointsHost gatherPoints(const ContactPointsHost &c, MPI_Comm comm)
 }
 
 /// The files a run writes into its directory (and scripts/run.sh's plot of them), removed
-/// before a run so that none of a previous run's is left beside this run's.
-const std::vector<std::string> kRunFiles = {"fields.xmf",
-                                            "fields.h5",
-                                            "contacts.xmf",
-                                            "contacts.h5",
-                                            "history.csv",
-                                            "gauges.csv",
-                                            "rcforc.csv",
-                                            "spcforc.csv",
-                                            "matsum.csv",
-                                            "summary.json",
-                                            "deck.resolved.yaml",
-                                            "gauges.png",
-                                            "fields_pressure.png",
-                                            "fields.xmf.tmp",
-                                            "contacts.xmf.tmp",
-                                            "summary.json.tmp",
-                                            "deck.resolved.yaml.tmp"};
+/// before a run so that none of a previous run's is left beside this run's; a restarted run
+/// that continues the directory's outputs keeps those it continues (kContinuedFiles).
+const std::vector<std::string> kContinuedFiles = {"fields.xmf",  "fields.h5",   "contacts.xmf",
+                                                  "contacts.h5", "history.csv", "gauges.csv",
+                                                  "rcforc.csv",  "spcforc.csv", "matsum.csv"};
+const std::vector<std::string> kReplacedFiles = {
+    "summary.json",   "deck.resolved.yaml", "gauges.png",       "fields_pressure.png",
+    "fields.xmf.tmp", "contacts.xmf.tmp",   "summary.json.tmp", "deck.resolved.yaml.tmp"};
 
 } // namespace
 
@@ -199,7 +189,8 @@ std::string estimateRefusal(const Deck &deck, const RunEstimate &e)
   return std::string();
 }
 
-Outputs::Outputs(const Solver &solver, const std::string &dir) : _solver(solver), _dir(dir)
+Outputs::Outputs(const Solver &solver, const std::string &dir, const RestartReader *restart)
+    : _solver(solver), _dir(dir)
 {
   const RunEstimate e = estimateRun(solver);
   const std::string refusal = estimateRefusal(solver.deck(), e);
@@ -220,8 +211,15 @@ Outputs::Outputs(const Solver &solver, const std::string &dir) : _solver(solver)
       _lock = std::make_unique<OutputDirectoryLock>(dir);
       if (!_lock->warning().empty())
         std::fprintf(stderr, "scpdyn: warning: %s\n", _lock->warning().c_str());
-      const std::vector<std::string> removed = removeFiles(dir, kRunFiles);
-      if (!removed.empty())
+      // a restart into the directory of the run it continues goes on with that run's files;
+      // into another directory it starts them afresh at the restart time
+      if (restart && std::filesystem::is_regular_file(dir + "/history.csv"))
+        _continued.rows = 0;
+      std::vector<std::string> files = kReplacedFiles;
+      if (_continued.rows < 0)
+        files.insert(files.end(), kContinuedFiles.begin(), kContinuedFiles.end());
+      const std::vector<std::string> removed = removeFiles(dir, files);
+      if (!removed.empty() && _continued.rows < 0)
       {
         std::string names;
         for (const auto &n : removed)
@@ -238,6 +236,21 @@ Outputs::Outputs(const Solver &solver, const std::string &dir) : _solver(solver)
     error = firstErrorOfAnyRank(error, solver.comm());
   if (!error.empty())
     throw InputError(error);
+  if (solver.numRanks() > 1)
+    MPI_Bcast(&_continued.rows, 1, MPI_LONG, 0, solver.comm());
+  if (_continued.rows >= 0)
+  {
+    const std::vector<double> c = restart->reals("outputs.counts", 4);
+    _rows = _continued.rows = long(c[0]);
+    _frames = _continued_frames.frames = int(c[1]);
+    _last_row_time = _continued.last_time = c[2];
+    _last_frame_time = _continued_frames.last_time = c[3];
+    if (root())
+      std::fprintf(stderr,
+                   "scpdyn: continuing the outputs in %s after cycle %ld (%ld rows, %ld frames "
+                   "kept)\n",
+                   dir.c_str(), solver.cycles(), _rows, _frames);
+  }
   _start = _last_progress = std::chrono::steady_clock::now();
 }
 
@@ -300,16 +313,46 @@ void Outputs::begin(const RestartReader *restart)
       for (int a = 0; a < nodesPerElement(ElementType(desc.cell_types[c])); ++a)
         desc.connectivity.push_back(rows[c * kMaxElementNodes + size_t(a)]);
   }
-  _fields = dd ? std::make_unique<FieldWriter>(_dir, desc, dist)
-               : std::make_unique<FieldWriter>(_dir, desc);
-  _run_histories = std::make_unique<RunHistories>(_solver);
-  if (!root())
+  // a directory whose files cannot be continued is the user's choice of directory: an input
+  // error, the same on every rank (the field file is opened by all, the others by rank 0)
+  const std::string fix = "; give --restart another output directory (-o) to start the outputs "
+                          "afresh at the restart time";
+  try
   {
-    startTimes(restart);
-    return;
+    _fields = dd ? std::make_unique<FieldWriter>(_dir, desc, dist, _continued_frames)
+                 : std::make_unique<FieldWriter>(_dir, desc, _continued_frames);
   }
+  catch (const std::runtime_error &e)
+  {
+    if (!continuesOutputs())
+      throw;
+    throw InputError(e.what() + fix);
+  }
+  _run_histories = std::make_unique<RunHistories>(_solver);
+  std::string error;
+  if (root())
+    try
+    {
+      openRootWriters();
+    }
+    catch (const std::runtime_error &e)
+    {
+      if (!continuesOutputs())
+        throw;
+      error = e.what() + fix;
+    }
+  if (_solver.numRanks() > 1)
+    error = firstErrorOfAnyRank(error, _solver.comm());
+  if (!error.empty())
+    throw InputError(error);
+  startTimes(restart);
+}
+
+void Outputs::openRootWriters()
+{
+  const Deck &deck = _solver.deck();
   if (_has_contacts)
-    _contacts = std::make_unique<PointSetWriter>(_dir, "contacts");
+    _contacts = std::make_unique<PointSetWriter>(_dir, "contacts", -1.0, _continued_frames);
 
   std::vector<std::string> history{"time",
                                    "cycle",
@@ -326,22 +369,22 @@ void Outputs::begin(const RestartReader *restart)
                                    "contact_dissipation"};
   if (_has_sleepy)
     history.push_back("failed_contacts");
-  _history = std::make_unique<CsvWriter>(_dir + "/history.csv", history);
+  _history = std::make_unique<CsvWriter>(_dir + "/history.csv", history, _continued);
   std::vector<std::string> columns{"time"};
   for (const auto &g : _solver.gauges())
     columns.push_back(g.column);
   if (!_solver.gauges().empty())
-    _gauges = std::make_unique<CsvWriter>(_dir + "/gauges.csv", columns);
+    _gauges = std::make_unique<CsvWriter>(_dir + "/gauges.csv", columns, _continued);
   const RunHistoryColumns more = runHistoryColumns(deck);
   auto csv = [&](const char *name, const std::vector<std::string> &names) {
     std::vector<std::string> all{"time"};
     all.insert(all.end(), names.begin(), names.end());
-    return names.empty() ? nullptr : std::make_unique<CsvWriter>(_dir + "/" + name, all);
+    return names.empty() ? nullptr
+                         : std::make_unique<CsvWriter>(_dir + "/" + name, all, _continued);
   };
   _rcforc = _has_contacts ? csv("rcforc.csv", more.contact) : nullptr;
   _spcforc = csv("spcforc.csv", more.reactions);
   _matsum = csv("matsum.csv", more.parts);
-  startTimes(restart);
 }
 
 void Outputs::startTimes(const RestartReader *restart)
@@ -373,10 +416,16 @@ void Outputs::writeRestart()
   const std::string path = restartFileName(_dir, _solver.cycles());
   if (!_restart_files.empty() && _restart_files.back() == path)
     return;
+  // the rows the file counts are on disk before the file is: a restart continues after them
+  for (CsvWriter *c : {_history.get(), _gauges.get(), _rcforc.get(), _spcforc.get(), _matsum.get()})
+    if (c)
+      c->flush();
   RestartWriter w(path, restartDeckHash(_solver.deck()));
   _solver.saveState(w);
   w.put("outputs.times", std::vector<double>{_next_field, _next_history, _next_restart,
                                              _max_balance_error, _last_balance_error});
+  w.put("outputs.counts",
+        std::vector<double>{double(_rows), double(_frames), _last_row_time, _last_frame_time});
   w.commit();
   _restart_files.push_back(path);
   while (int(_restart_files.size()) > _solver.deck().restart_keep)
@@ -392,6 +441,8 @@ void Outputs::writeFrame()
   if (_last_frame_cycle == _solver.cycles())
     return;
   _last_frame_cycle = _solver.cycles();
+  ++_frames;
+  _last_frame_time = _solver.time();
   const NodeFields &nodes = _solver.nodes();
   const ElementFields &el = _solver.elements();
   FieldFrame f;
@@ -492,6 +543,8 @@ void Outputs::writeRows()
   if (_last_row_cycle == _solver.cycles())
     return;
   _last_row_cycle = _solver.cycles();
+  ++_rows;
+  _last_row_time = _solver.time();
   const EnergyReport r = _solver.energies();
   _last_balance_error = r.balance_error;
   _max_balance_error = std::max(_max_balance_error, std::abs(r.balance_error));

@@ -60,13 +60,18 @@ class Outputs
 public:
   /// \brief Estimates the run (an InputError above the deck's limits), prints the pre-flight
   /// block on stdout, locks `dir` and removes a previous run's outputs from it (an InputError
-  /// naming the directory when another live run holds it).
-  Outputs(const Solver &solver, const std::string &dir);
+  /// naming the directory when another live run holds it). With `restart` and a `dir` that
+  /// holds history.csv, the run continues the outputs there instead: begin() keeps the rows
+  /// and frames the run that wrote the restart file had written when it wrote it and drops the
+  /// later ones.
+  Outputs(const Solver &solver, const std::string &dir, const RestartReader *restart = nullptr);
   ~Outputs();
   /// \brief Writes the resolved deck and the initial frame and rows; with `restart` (the run
-  /// continues from that file) no initial frame and rows, and the output times go on from the
-  /// file's.
+  /// continues from that file) no initial frame and rows, the output times go on from the
+  /// file's, and the files the constructor found go on after the file's rows and frames.
   void begin(const RestartReader *restart = nullptr);
+  /// \brief Whether this run continues the outputs of `dir` (see the constructor).
+  bool continuesOutputs() const { return _continued.rows >= 0; }
   /// \brief restart_<cycle>.h5 of the state now (the solver's and these outputs' times), then
   /// the oldest of this run's restart files beyond output.restart_keep removed.
   void writeRestart();
@@ -81,6 +86,7 @@ public:
 private:
   void finishWith(const std::string &status, const std::string &error, const std::string &signal);
   void startTimes(const RestartReader *restart);
+  void openRootWriters();
   void writeFrame();
   void writeRows();
   void writeContactFrame();
@@ -100,6 +106,12 @@ private:
   std::unique_ptr<CsvWriter> _rcforc, _spcforc, _matsum; ///< rank 0, when they have columns
   double _next_field = 0, _next_history = 0, _next_restart = 0;
   std::deque<std::string> _restart_files; ///< written by this run, oldest first
+  // rows and frames in the directory's files, and the time of the last of each: the counts a
+  // restart file records, so that a restart continues those files after them
+  long _rows = 0, _frames = 0;
+  double _last_row_time = 0, _last_frame_time = 0;
+  ContinueRows _continued;
+  ContinueFrames _continued_frames;
   long _last_frame_cycle = -1, _last_row_cycle = -1;
   double _max_balance_error = 0, _last_balance_error = 0;
   std::chrono::steady_clock::time_point _start, _last_progress;

@@ -285,7 +285,7 @@ long Solver::run(const std::string &output_dir, const std::string &restart_file)
     restart = std::make_unique<RestartReader>(restart_file, restartDeckHash(_m.deck));
     loadState(*restart);
   }
-  Outputs out(*this, output_dir);
+  Outputs out(*this, output_dir, restart.get());
   out.begin(restart.get());
   try
   {

@@ -98,18 +98,19 @@ int validateMesh(const FieldMeshDesc &mesh)
 }
 } // namespace
 
-FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh)
+FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh,
+                         const ContinueFrames &continued)
     : _h5_path(dir + "/" + kH5Name), _xmf_path(dir + "/" + kXmfName), _mesh(mesh)
 {
   _uniform_type = validateMesh(mesh);
   _num_nodes = int(mesh.coords0.size() / 3);
   _num_cells = int(mesh.cell_types.size());
   _connectivity_length = mesh.connectivity.size();
-  open(dir);
+  open(dir, continued);
 }
 
 FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh,
-                         const FieldDistribution &dist)
+                         const FieldDistribution &dist, const ContinueFrames &continued)
     : _h5_path(dir + "/" + kH5Name), _xmf_path(dir + "/" + kXmfName), _mesh(mesh),
       _distributed(true), _comm(dist.comm)
 {
@@ -157,19 +158,53 @@ FieldWriter::FieldWriter(const std::string &dir, const FieldMeshDesc &mesh,
   plan(dist.cell_rows, _cell_plan);
   _local_nodes = dist.node_rows.size();
   _local_cells = dist.cell_rows.size();
-  open(dir);
+  open(dir, continued);
 }
 
-void FieldWriter::open(const std::string &dir)
+void FieldWriter::open(const std::string &dir, const ContinueFrames &continued)
 {
   if (root())
     ensureDirectory(dir);
   if (_distributed)
     MPI_Barrier(_comm); // the directory exists before any rank opens the file
-  openFile(_h5_path, _distributed ? &_comm : nullptr, _file, _dxpl);
+  const bool existing = continued.frames >= 0;
+  if (existing)
+  {
+    // rank 0 reads the XDMF text; its verdict goes to every rank before any collective call
+    std::string error;
+    if (root())
+      try
+      {
+        _grids = xdmfFrameGrids(_xmf_path, size_t(continued.frames));
+      }
+      catch (const std::runtime_error &e)
+      {
+        error = e.what();
+      }
+    long length = long(error.size());
+    if (_distributed)
+      MPI_Bcast(&length, 1, MPI_LONG, 0, _comm);
+    error.resize(size_t(length));
+    if (_distributed && length > 0)
+      MPI_Bcast(&error[0], int(length), MPI_CHAR, 0, _comm);
+    if (length > 0)
+      throw std::runtime_error(error);
+    _grids.resize(size_t(continued.frames));
+  }
+  openFile(_h5_path, _distributed ? &_comm : nullptr, _file, _dxpl, existing);
   try
   {
-    writeMesh();
+    if (existing)
+    {
+      // the mesh the file has is this run's (same deck): only its size is checked
+      Handle coords(H5Dopen2(_file, "mesh/coords0", H5P_DEFAULT), H5Dclose);
+      Handle space(coords < 0 ? -1 : H5Dget_space(coords), H5Sclose);
+      if (space < 0 || H5Sget_simple_extent_npoints(space) != hssize_t(3) * _num_nodes)
+        throw std::runtime_error("cannot continue '" + _h5_path + "': not this mesh's file");
+      keepFrames(_file, continued.frames, continued.last_time, _h5_path);
+    }
+    else
+      writeMesh();
     check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush the mesh", _h5_path);
     if (root())
       writeXdmf();
@@ -317,7 +352,7 @@ void FieldWriter::write(const FieldFrame &frame)
     info.attributes.push_back({"displacement", false, 3});
   }
 
-  const std::string name = std::to_string(_frames.size());
+  const std::string name = std::to_string(_grids.size());
   Handle frames(openGroup(_file, "frames", _h5_path), H5Gclose);
   Handle g(createGroup(frames, name, _h5_path), H5Gclose);
   writeScalarAttribute(g, "time", frame.time, _h5_path);
@@ -352,7 +387,7 @@ void FieldWriter::write(const FieldFrame &frame)
   }
   // Data on disk before the sidecar points at it: a crash never leaves dangling references.
   check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush frame " + name, _h5_path);
-  _frames.push_back(std::move(info));
+  _grids.push_back(root() ? frameXml(_grids.size(), info) : std::string());
   if (root())
     writeXdmf();
 }
@@ -380,47 +415,40 @@ std::string FieldWriter::topologyXml() const
   return s.str();
 }
 
+std::string FieldWriter::frameXml(std::size_t k, const FrameInfo &f) const
+{
+  std::ostringstream x;
+  const std::string n = std::to_string(_num_nodes), ne = std::to_string(_num_cells);
+  const std::string h5 = std::string(kH5Name) + ":/frames/" + std::to_string(k);
+  char time[32];
+  std::snprintf(time, sizeof time, "%.17g", f.time);
+  x << "      <Grid Name=\"frame_" << k << "\" GridType=\"Uniform\">\n"
+    << "        <Time Value=\"" << time << "\"/>\n"
+    << "        " << topologyXml() << "        <Geometry GeometryType=\"XYZ\">\n"
+    << "          <DataItem Dimensions=\"" << n
+    << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
+    << "/coords</DataItem>\n        </Geometry>\n";
+  for (const AttributeInfo &a : f.attributes)
+  {
+    const char *type = a.components == 1 ? "Scalar" : a.components == 3 ? "Vector" : "Tensor6";
+    const std::string count = a.on_cells ? ne : n;
+    x << "        <Attribute Name=\"" << xmlEscape(a.name) << "\" AttributeType=\"" << type
+      << "\" Center=\"" << (a.on_cells ? "Cell" : "Node") << "\">\n"
+      << "          <DataItem Dimensions=\"" << count;
+    if (a.components > 1)
+      x << " " << a.components;
+    x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
+      << (a.on_cells ? "/cell_data/" : "/point_data/") << xmlEscape(a.name)
+      << "</DataItem>\n        </Attribute>\n";
+  }
+  x << kXdmfGridEnd;
+  return x.str();
+}
+
 void FieldWriter::writeXdmf() const
 {
-  // Version 3.0 for meshio's reader; the XDMF2-style keys (TopologyType, NumberType, ...)
-  // are read by both ParaView readers (XDMF and XDMF3).
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-    << "<Xdmf Version=\"3.0\">\n  <Domain>\n"
-    << "    <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  const std::string topology = topologyXml();
-  const std::string n = std::to_string(_num_nodes), ne = std::to_string(_num_cells);
-  for (std::size_t k = 0; k < _frames.size(); ++k)
-  {
-    const FrameInfo &f = _frames[k];
-    const std::string h5 = std::string(kH5Name) + ":/frames/" + std::to_string(k);
-    char time[32];
-    std::snprintf(time, sizeof time, "%.17g", f.time);
-    x << "      <Grid Name=\"frame_" << k << "\" GridType=\"Uniform\">\n"
-      << "        <Time Value=\"" << time << "\"/>\n"
-      << "        " << topology << "        <Geometry GeometryType=\"XYZ\">\n"
-      << "          <DataItem Dimensions=\"" << n
-      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
-      << "/coords</DataItem>\n        </Geometry>\n";
-    for (const AttributeInfo &a : f.attributes)
-    {
-      const char *type = a.components == 1 ? "Scalar" : a.components == 3 ? "Vector" : "Tensor6";
-      const std::string count = a.on_cells ? ne : n;
-      x << "        <Attribute Name=\"" << xmlEscape(a.name) << "\" AttributeType=\"" << type
-        << "\" Center=\"" << (a.on_cells ? "Cell" : "Node") << "\">\n"
-        << "          <DataItem Dimensions=\"" << count;
-      if (a.components > 1)
-        x << " " << a.components;
-      x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
-        << (a.on_cells ? "/cell_data/" : "/point_data/") << xmlEscape(a.name)
-        << "</DataItem>\n        </Attribute>\n";
-    }
-    x << "      </Grid>\n";
-  }
-  x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
-
   // Write-then-rename: readers and post-crash inspection only ever see a complete file.
-  replaceFile(_xmf_path, x.str());
+  replaceFile(_xmf_path, xdmfCollection("fields", _grids));
 }
 
 } // namespace scpdyn

@@ -59,6 +59,15 @@ struct FieldFrame
   std::vector<NamedField> cell_tensors6; ///< n_cells*6, Voigt xx yy zz xy yz zx ("stress")
 };
 
+/// \brief A restarted run continuing the frame files a previous run wrote into its directory:
+/// the first `frames` frames are kept as they are (the last of them must be at `last_time`,
+/// else the files are another run's), the later ones removed, and new frames come after them.
+struct ContinueFrames
+{
+  int frames = -1; ///< -1: new files
+  double last_time = 0;
+};
+
 /// \brief Appends frames to `dir/fields.h5` and keeps `dir/fields.xmf` valid after each one.
 ///
 /// Serial runs write through the sec2 driver; decomposed runs (FieldDistribution) open the
@@ -69,12 +78,14 @@ public:
   /// \brief Creates `dir` (mkdir -p), truncates `dir/fields.h5`, writes /mesh and an empty
   /// `dir/fields.xmf`. Throws std::runtime_error naming the path on I/O failure and
   /// std::invalid_argument on an inconsistent mesh.
-  FieldWriter(const std::string &dir, const FieldMeshDesc &mesh);
+  FieldWriter(const std::string &dir, const FieldMeshDesc &mesh,
+              const ContinueFrames &continued = {});
   /// \brief The collective version for a decomposed run: every rank of `dist.comm` constructs
   /// it, each frame is written by all ranks at once (MPI-IO, collective transfers, each rank
   /// its own rows), so no rank ever holds a global frame. Frames then carry the rank's local
   /// nodes and cells, every node field including "displacement". Only rank 0 writes the XDMF.
-  FieldWriter(const std::string &dir, const FieldMeshDesc &mesh, const FieldDistribution &dist);
+  FieldWriter(const std::string &dir, const FieldMeshDesc &mesh, const FieldDistribution &dist,
+              const ContinueFrames &continued = {});
   ~FieldWriter();
   FieldWriter(const FieldWriter &) = delete;
   FieldWriter &operator=(const FieldWriter &) = delete;
@@ -86,7 +97,7 @@ public:
   /// \brief Flushes and closes the HDF5 file; idempotent. write() afterwards throws.
   void close();
 
-  int framesWritten() const { return int(_frames.size()); }
+  int framesWritten() const { return int(_grids.size()); }
   const std::string &h5Path() const { return _h5_path; }
   const std::string &xmfPath() const { return _xmf_path; }
 
@@ -104,6 +115,8 @@ private:
     long cycle;
     std::vector<AttributeInfo> attributes;
   };
+  /// The XDMF grid of frame k (written once, kept to regenerate the document).
+  std::string frameXml(std::size_t k, const FrameInfo &f) const;
 
   /// This rank's rows of a decomposed run, ascending, and where each comes from locally.
   struct RowPlan
@@ -111,7 +124,7 @@ private:
     std::vector<long> local; ///< local index of each written row, in ascending row order
     std::vector<unsigned long long> start, length; ///< the rows as runs
   };
-  void open(const std::string &dir);
+  void open(const std::string &dir, const ContinueFrames &continued);
   void writeMesh();
   template <class T>
   void writeRows(std::int64_t loc, const std::string &name, const RowPlan *plan, std::size_t rows,
@@ -125,9 +138,9 @@ private:
   int _num_nodes = 0, _num_cells = 0;
   int _uniform_type = -1; ///< the single cell type, or -1 when the mesh mixes types
   std::size_t _topology_length = 0;
-  std::int64_t _file = -1; ///< hid_t of the open file (int64 in HDF5 1.10), -1 when closed
-  std::int64_t _dxpl = -1; ///< dataset transfer list (collective in a decomposed run)
-  std::vector<FrameInfo> _frames;
+  std::int64_t _file = -1;         ///< hid_t of the open file (int64 in HDF5 1.10), -1 when closed
+  std::int64_t _dxpl = -1;         ///< dataset transfer list (collective in a decomposed run)
+  std::vector<std::string> _grids; ///< per frame written: its XDMF grid
   bool _distributed = false;
   MPI_Comm _comm = MPI_COMM_NULL;
   int _rank = 0;
@@ -155,7 +168,8 @@ struct PointFrame
 class PointSetWriter
 {
 public:
-  PointSetWriter(const std::string &dir, const std::string &name, double empty_value = -1.0);
+  PointSetWriter(const std::string &dir, const std::string &name, double empty_value = -1.0,
+                 const ContinueFrames &continued = {});
   ~PointSetWriter();
   PointSetWriter(const PointSetWriter &) = delete;
   PointSetWriter &operator=(const PointSetWriter &) = delete;
@@ -164,7 +178,7 @@ public:
   /// std::invalid_argument on inconsistent sizes or names, std::runtime_error on I/O errors.
   void write(const PointFrame &frame);
   void close();
-  int framesWritten() const { return int(_frames.size()); }
+  int framesWritten() const { return int(_grids.size()); }
   const std::string &xmfPath() const { return _xmf_path; }
 
 private:
@@ -175,13 +189,14 @@ private:
     std::size_t count;
     std::vector<std::string> names;
   };
+  std::string frameXml(std::size_t k, const FrameInfo &f) const;
   void writeXdmf() const;
 
   std::string _h5_name, _h5_path, _xmf_path;
   double _empty_value;
   std::int64_t _file = -1;
   std::int64_t _dxpl = -1;
-  std::vector<FrameInfo> _frames;
+  std::vector<std::string> _grids; ///< per frame written: its XDMF grid
 };
 
 } // namespace scpdyn

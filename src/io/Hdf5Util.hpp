@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
@@ -124,13 +125,19 @@ inline void releaseFile(hid_t &file, hid_t &dxpl)
 }
 
 /// The one place that opens an output file: created (truncated) with the driver of
-/// makeFileAccessList(comm), and its dataset transfer list, collective with `comm`.
-inline void openFile(const std::string &path, const MPI_Comm *comm, hid_t &file, hid_t &dxpl)
+/// makeFileAccessList(comm), or with `existing` the file a previous run wrote opened for
+/// writing (a restarted run continuing its outputs), and its dataset transfer list,
+/// collective with `comm`.
+inline void openFile(const std::string &path, const MPI_Comm *comm, hid_t &file, hid_t &dxpl,
+                     bool existing = false)
 {
   silenceErrorStack();
   {
     Handle fapl(makeFileAccessList(comm), H5Pclose);
-    file = createFieldFile(path, fapl);
+    if (!existing)
+      file = createFieldFile(path, fapl);
+    else if ((file = H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl)) < 0)
+      throw std::runtime_error("cannot open '" + path + "' to continue it: " + failureCause());
   }
   dxpl = H5Pcreate(H5P_DATASET_XFER);
   try
@@ -264,6 +271,84 @@ void writeScalarAttribute(hid_t loc, const char *name, T value, const std::strin
   if (status >= 0)
     status = attr.close();
   check(status, std::string("write attribute '") + name + "'", path);
+}
+
+/// \brief A restarted run continuing a frame file (/frames/<k>, attribute `time`): checks
+/// that the file holds at least `keep` frames and that the last of them is at `last_time` (the
+/// count alone could match another run's file), and removes the frames after it, which the
+/// run that wrote the restart file had not written yet when it wrote it. Collective over the
+/// file's communicator (every rank makes the same calls).
+inline void keepFrames(hid_t file, int keep, double last_time, const std::string &path)
+{
+  Handle frames(openGroup(file, "frames", path), H5Gclose);
+  H5G_info_t info;
+  if (H5Gget_info(frames, &info) < 0)
+    throw std::runtime_error("cannot read '" + path + "': " + failureCause());
+  const std::string cannot = "cannot continue '" + path + "': ";
+  if (info.nlinks < hsize_t(keep))
+    throw std::runtime_error(cannot + "it holds " + std::to_string(info.nlinks) +
+                             " frames, the restart file's run had written " + std::to_string(keep));
+  if (keep > 0)
+  {
+    double t = 0;
+    const std::string last = std::to_string(keep - 1);
+    Handle attr(H5Aopen_by_name(frames, last.c_str(), "time", H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    if (attr < 0 || H5Aread(attr, H5T_NATIVE_DOUBLE, &t) < 0 || t != last_time)
+      throw std::runtime_error(cannot + "its frame " + last + " is not at the time of the " +
+                               "restart file's (another run's outputs)");
+  }
+  for (hsize_t k = hsize_t(keep); k < info.nlinks; ++k)
+    check(H5Ldelete(frames, std::to_string(k).c_str(), H5P_DEFAULT),
+          "remove frame " + std::to_string(k), path);
+}
+
+/// \brief The writers' XDMF document: a temporal collection `name` of frame grids, each the
+/// text xdmfFrameGrids() finds again.
+inline std::string xdmfCollection(const std::string &name, const std::vector<std::string> &grids)
+{
+  // Version 3.0 for meshio's reader; the XDMF2-style keys (TopologyType, NumberType, ...)
+  // are read by both ParaView readers (XDMF and XDMF3).
+  std::string x = "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+                  "<Xdmf Version=\"3.0\">\n  <Domain>\n    <Grid Name=\"" +
+                  name + "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const std::string &g : grids)
+    x += g;
+  return x + "    </Grid>\n  </Domain>\n</Xdmf>\n";
+}
+
+constexpr const char *kXdmfGridStart = "      <Grid Name=\"frame_";
+constexpr const char *kXdmfGridEnd = "      </Grid>\n";
+
+/// \brief The first `keep` frame grids of the XDMF document xdmfCollection() wrote to `path`,
+/// as its text, for a restarted run that continues it; throws when it holds fewer.
+inline std::vector<std::string> xdmfFrameGrids(const std::string &path, size_t keep)
+{
+  std::FILE *fp = std::fopen(path.c_str(), "rb");
+  std::string text;
+  if (fp)
+  {
+    char buf[65536];
+    for (size_t n; (n = std::fread(buf, 1, sizeof buf, fp)) > 0;)
+      text.append(buf, n);
+    std::fclose(fp);
+  }
+  std::vector<std::string> grids;
+  for (size_t at = text.find(kXdmfGridStart); grids.size() < keep && at != std::string::npos;
+       at = text.find(kXdmfGridStart, at))
+  {
+    const size_t end = text.find(kXdmfGridEnd, at);
+    if (end == std::string::npos)
+      break;
+    const size_t next = end + std::strlen(kXdmfGridEnd);
+    grids.push_back(text.substr(at, next - at));
+    at = next;
+  }
+  if (grids.size() < keep)
+    throw std::runtime_error("cannot continue '" + path + "': " +
+                             (fp ? "it holds " + std::to_string(grids.size()) + " frames, the " +
+                                       "restart file's run had written " + std::to_string(keep)
+                                 : std::string("no such file")));
+  return grids;
 }
 
 inline std::string xmlEscape(const std::string &s)

@@ -14,15 +14,25 @@ namespace scpdyn
 {
 using namespace h5detail;
 
-PointSetWriter::PointSetWriter(const std::string &dir, const std::string &name, double empty_value)
+PointSetWriter::PointSetWriter(const std::string &dir, const std::string &name, double empty_value,
+                               const ContinueFrames &continued)
     : _h5_name(name + ".h5"), _h5_path(dir + "/" + name + ".h5"),
       _xmf_path(dir + "/" + name + ".xmf"), _empty_value(empty_value)
 {
   ensureDirectory(dir);
-  openFile(_h5_path, nullptr, _file, _dxpl);
+  const bool existing = continued.frames >= 0;
+  openFile(_h5_path, nullptr, _file, _dxpl, existing);
   try
   {
-    Handle frames(createGroup(_file, "frames", _h5_path), H5Gclose);
+    if (existing)
+    {
+      keepFrames(_file, continued.frames, continued.last_time, _h5_path);
+      _grids = xdmfFrameGrids(_xmf_path, size_t(continued.frames));
+    }
+    else
+    {
+      Handle frames(createGroup(_file, "frames", _h5_path), H5Gclose);
+    }
     check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush", _h5_path);
     writeXdmf();
   }
@@ -67,7 +77,7 @@ void PointSetWriter::write(const PointFrame &frame)
                                   std::to_string(n));
     info.names.push_back(f.first);
   }
-  const std::string name = std::to_string(_frames.size());
+  const std::string name = std::to_string(_grids.size());
   Handle frames(openGroup(_file, "frames", _h5_path), H5Gclose);
   Handle g(createGroup(frames, name, _h5_path), H5Gclose);
   writeScalarAttribute(g, "time", frame.time, _h5_path);
@@ -86,44 +96,38 @@ void PointSetWriter::write(const PointFrame &frame)
   for (const auto &f : frame.scalars)
     writeDataset(pd, f.first, {count}, n == 0 ? empty.data() : f.second.data(), _dxpl, _h5_path);
   check(H5Fflush(_file, H5F_SCOPE_GLOBAL), "flush frame " + name, _h5_path);
-  _frames.push_back(std::move(info));
+  _grids.push_back(frameXml(_grids.size(), info));
   writeXdmf();
 }
 
-void PointSetWriter::writeXdmf() const
+std::string PointSetWriter::frameXml(std::size_t k, const FrameInfo &f) const
 {
   std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-    << "<Xdmf Version=\"3.0\">\n  <Domain>\n"
-    << "    <Grid Name=\"points\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  for (std::size_t k = 0; k < _frames.size(); ++k)
-  {
-    const FrameInfo &f = _frames[k];
-    const std::string h5 = _h5_name + ":/frames/" + std::to_string(k);
-    const std::string n = std::to_string(f.count);
-    char time[32];
-    std::snprintf(time, sizeof time, "%.17g", f.time);
-    x << "      <Grid Name=\"frame_" << k << "\" GridType=\"Uniform\">\n"
-      << "        <Time Value=\"" << time << "\"/>\n"
-      << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
-      << "\" NodesPerElement=\"1\">\n"
+  const std::string h5 = _h5_name + ":/frames/" + std::to_string(k);
+  const std::string n = std::to_string(f.count);
+  char time[32];
+  std::snprintf(time, sizeof time, "%.17g", f.time);
+  x << "      <Grid Name=\"frame_" << k << "\" GridType=\"Uniform\">\n"
+    << "        <Time Value=\"" << time << "\"/>\n"
+    << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+    << "\" NodesPerElement=\"1\">\n"
+    << "          <DataItem Dimensions=\"" << n
+    << " 1\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
+    << "/vertices</DataItem>\n        </Topology>\n"
+    << "        <Geometry GeometryType=\"XYZ\">\n"
+    << "          <DataItem Dimensions=\"" << n
+    << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
+    << "/points</DataItem>\n        </Geometry>\n";
+  for (const std::string &a : f.names)
+    x << "        <Attribute Name=\"" << xmlEscape(a)
+      << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
       << "          <DataItem Dimensions=\"" << n
-      << " 1\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
-      << "/vertices</DataItem>\n        </Topology>\n"
-      << "        <Geometry GeometryType=\"XYZ\">\n"
-      << "          <DataItem Dimensions=\"" << n
-      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
-      << "/points</DataItem>\n        </Geometry>\n";
-    for (const std::string &a : f.names)
-      x << "        <Attribute Name=\"" << xmlEscape(a)
-        << "\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-        << "          <DataItem Dimensions=\"" << n
-        << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << "/point_data/"
-        << xmlEscape(a) << "</DataItem>\n        </Attribute>\n";
-    x << "      </Grid>\n";
-  }
-  x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
-  replaceFile(_xmf_path, x.str());
+      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << "/point_data/"
+      << xmlEscape(a) << "</DataItem>\n        </Attribute>\n";
+  x << kXdmfGridEnd;
+  return x.str();
 }
+
+void PointSetWriter::writeXdmf() const { replaceFile(_xmf_path, xdmfCollection("points", _grids)); }
 
 } // namespace scpdyn

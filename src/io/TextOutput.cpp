@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
@@ -52,17 +53,70 @@ std::string csvField(const std::string &s)
 } // namespace
 
 CsvWriter::CsvWriter(const std::string &path, std::vector<std::string> columns, int flush_every)
+    : CsvWriter(path, std::move(columns), ContinueRows{}, flush_every)
+{
+}
+
+CsvWriter::CsvWriter(const std::string &path, std::vector<std::string> columns,
+                     const ContinueRows &continued, int flush_every)
     : _path(path), _columns(std::move(columns)), _flush_every(flush_every < 1 ? 1 : flush_every)
 {
   if (_columns.empty())
     throw std::invalid_argument("CsvWriter: no columns for '" + path + "'");
-  _fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (_fd < 0)
-    throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno));
+  std::string header;
   for (std::size_t i = 0; i < _columns.size(); ++i)
-    _buffer += (i ? "," : "") + csvField(_columns[i]);
-  _buffer += "\n";
-  flush(); // the header alone already tells a crashed run's reader what was measured
+    header += (i ? "," : "") + csvField(_columns[i]);
+  header += "\n";
+  if (continued.rows < 0)
+  {
+    _fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (_fd < 0)
+      throw std::runtime_error("cannot open '" + path + "': " + std::strerror(errno));
+    _buffer = header;
+    flush(); // the header alone already tells a crashed run's reader what was measured
+    return;
+  }
+  _fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC);
+  if (_fd < 0)
+    throw std::runtime_error("cannot open '" + path + "' to continue it: " + std::strerror(errno));
+  std::string text;
+  char buf[65536];
+  for (ssize_t n; (n = ::read(_fd, buf, sizeof buf)) != 0;)
+    if (n > 0)
+      text.append(buf, size_t(n));
+    else if (errno != EINTR)
+      break;
+  const std::string cannot = "cannot continue '" + path + "': ";
+  std::string error;
+  size_t end = header.size(), last = end;
+  if (text.compare(0, header.size(), header) != 0)
+    error = cannot + "its header is not this run's columns";
+  for (long r = 0; error.empty() && r < continued.rows; ++r)
+  {
+    const size_t eol = text.find('\n', end);
+    if (eol == std::string::npos)
+    {
+      error = cannot + "it holds " + std::to_string(r) + " rows, the restart file's run had " +
+              "written " + std::to_string(continued.rows);
+      break;
+    }
+    last = end;
+    end = eol + 1;
+  }
+  if (error.empty() && continued.rows > 0 &&
+      std::strtod(text.c_str() + last, nullptr) != continued.last_time)
+    error = cannot + "its row " + std::to_string(continued.rows) + " is not at the time of the " +
+            "restart file's (another run's outputs)";
+  if (error.empty() &&
+      (::ftruncate(_fd, off_t(end)) != 0 || ::lseek(_fd, off_t(end), SEEK_SET) < 0))
+    error = cannot + std::strerror(errno);
+  if (!error.empty())
+  {
+    ::close(_fd);
+    _fd = -1;
+    throw std::runtime_error(error);
+  }
+  _size = static_cast<long long>(end);
 }
 
 CsvWriter::~CsvWriter()

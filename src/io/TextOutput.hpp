@@ -27,6 +27,16 @@ std::string formatDouble(double value);
 /// file and the cause (strerror: "No space left on device", ...).
 void replaceFile(const std::string &path, const std::string &text);
 
+/// \brief A restarted run continuing a CSV file a previous run wrote into its directory: the
+/// header (which must be this writer's) and the first `rows` rows are kept byte for byte (the
+/// last of them must begin with `last_time`, else the file is another run's), the later rows
+/// removed, and new rows come after them.
+struct ContinueRows
+{
+  long rows = -1; ///< -1: a new file
+  double last_time = 0;
+};
+
 /// \brief CSV file: one header line, then one line per row() with "%.17g" numbers.
 ///
 /// Rows are flushed to the OS every `flush_every` rows and at flush()/close()/destruction,
@@ -40,6 +50,10 @@ public:
   /// comma, quote or newline are quoted as in RFC 4180. Throws std::runtime_error naming
   /// the path if it cannot be opened.
   CsvWriter(const std::string &path, std::vector<std::string> columns, int flush_every = 16);
+  /// \brief With `continued.rows` >= 0: continues the existing `path` (ContinueRows); throws
+  /// std::runtime_error naming the path when it is not a file this run can continue.
+  CsvWriter(const std::string &path, std::vector<std::string> columns,
+            const ContinueRows &continued, int flush_every = 16);
   ~CsvWriter();
   CsvWriter(const CsvWriter &) = delete;
   CsvWriter &operator=(const CsvWriter &) = delete;

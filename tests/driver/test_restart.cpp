@@ -128,6 +128,63 @@ hsize_t frameCount(const std::string &file)
   return info.nlinks;
 }
 
+/// The cycle of restart file `path` (restart_<cycle>.h5).
+long cycleOf(const std::string &path)
+{
+  return std::stol(fs::path(path).filename().string().substr(8));
+}
+
+/// `deck` stopped at `cycle` (time.max_cycles, which a restart may change), as `path`.
+std::string stoppedAt(const std::string &deck, long cycle, const std::string &path)
+{
+  std::string text = readText(deck);
+  const std::string key = "\ntime: {";
+  text.replace(text.find(key), key.size(), key + "max_cycles: " + std::to_string(cycle) + ", ");
+  std::ofstream(path) << text;
+  return path;
+}
+
+/// The outputs a run continues (docs/input.md, `output`).
+const char *const kContinuedFiles[] = {"history.csv",  "gauges.csv", "rcforc.csv",
+                                       "spcforc.csv",  "matsum.csv", "fields.xmf",
+                                       "contacts.xmf", "fields.h5",  "contacts.h5"};
+
+/// Every output file of `b` is `a`'s: the CSV and XDMF text byte for byte, the HDF5 files'
+/// frames (their count, every dataset of every frame bit for bit) and mesh.
+void expectSameOutputs(const std::string &a, const std::string &b)
+{
+  for (const std::string f : kContinuedFiles)
+  {
+    const std::string pa = a + "/" + f, pb = b + "/" + f;
+    ASSERT_EQ(fs::exists(pa), fs::exists(pb)) << pb;
+    if (!fs::exists(pa))
+      continue;
+    if (fs::path(f).extension() != ".h5")
+    {
+      EXPECT_TRUE(readText(pa) == readText(pb)) << pb << " differs from " << pa;
+      continue;
+    }
+    const hsize_t frames = frameCount(pa);
+    ASSERT_EQ(frameCount(pb), frames) << pb;
+    std::vector<std::string> groups;
+    if (f == std::string("fields.h5"))
+      groups.push_back("mesh");
+    for (hsize_t k = 0; k < frames; ++k)
+      groups.push_back("frames/" + std::to_string(k));
+    for (const std::string &g : groups)
+    {
+      const auto da = datasetBytes(pa, g), db = datasetBytes(pb, g);
+      ASSERT_FALSE(da.empty()) << pa << ":" << g;
+      ASSERT_EQ(da.size(), db.size()) << pb << ":" << g;
+      for (size_t d = 0; d < da.size(); ++d)
+      {
+        EXPECT_EQ(da[d].first, db[d].first) << pb << ":" << g;
+        EXPECT_TRUE(da[d].second == db[d].second) << pb << ":" << g << "/" << da[d].first;
+      }
+    }
+  }
+}
+
 class RestartBitwise : public ::testing::TestWithParam<const char *>
 {
 };
@@ -186,6 +243,60 @@ TEST_P(RestartBitwise, ContinuesAsTheUninterruptedRun)
 }
 
 INSTANTIATE_TEST_SUITE_P(ContactDecks, RestartBitwise,
+                         ::testing::Values("sleepy_wall_2d", "block_impact_2d",
+                                           "explicit_touching_2d"));
+
+class RestartInPlace : public ::testing::TestWithParam<const char *>
+{
+};
+
+TEST_P(RestartInPlace, ContinuesTheOutputsOfItsDirectoryAsTheUninterruptedRun)
+{
+  const std::string name = GetParam();
+  const std::string dir = kWork + "/in_place_" + name;
+  fs::remove_all(dir);
+  const std::string deck = deckWithRestarts(name, dir);
+  std::string err;
+  ASSERT_EQ(runBinary(deck + " -o " + dir + "/full", &err, kEnv), 0) << err;
+  const std::string half = fs::path(restartFiles(dir + "/full").front()).filename().string();
+  const long cycle = cycleOf(half);
+
+  // a run stopped at the half-time restart file's cycle (its last frame and rows at that cycle
+  // are not the uninterrupted run's, unless due), continued in its own directory
+  const std::string stopped = stoppedAt(deck, cycle, dir + "/stopped.yaml");
+  ASSERT_EQ(runBinary(stopped + " -o " + dir + "/stopped", &err, kEnv), 0) << err;
+  ASSERT_TRUE(fs::exists(dir + "/stopped/" + half));
+  ASSERT_EQ(
+      runBinary(deck + " -o " + dir + "/stopped --restart " + dir + "/stopped/" + half, &err, kEnv),
+      0)
+      << err;
+  EXPECT_NE(err.find("continuing the outputs in " + dir + "/stopped after cycle " +
+                     std::to_string(cycle)),
+            std::string::npos)
+      << err;
+  expectSameOutputs(dir + "/full", dir + "/stopped");
+
+  // the uninterrupted run's own directory continued from half time: the rows and frames after
+  // it are dropped and written again, the same
+  fs::copy(dir + "/full", dir + "/rewound", fs::copy_options::recursive);
+  ASSERT_EQ(
+      runBinary(deck + " -o " + dir + "/rewound --restart " + dir + "/rewound/" + half, &err, kEnv),
+      0)
+      << err;
+  expectSameOutputs(dir + "/full", dir + "/rewound");
+
+  // a directory of another run (one that ended before the restart file's cycle): refused, and
+  // its files are left as they were
+  const std::string early = stoppedAt(deck, cycle / 2, dir + "/early.yaml");
+  ASSERT_EQ(runBinary(early + " -o " + dir + "/early", &err, kEnv), 0) << err;
+  const std::string before = readText(dir + "/early/history.csv");
+  EXPECT_EQ(
+      runBinary(deck + " -o " + dir + "/early --restart " + dir + "/full/" + half, &err, kEnv), 2);
+  EXPECT_NE(err.find("cannot continue '" + dir + "/early/"), std::string::npos) << err;
+  EXPECT_EQ(readText(dir + "/early/history.csv"), before);
+}
+
+INSTANTIATE_TEST_SUITE_P(ContactDecks, RestartInPlace,
                          ::testing::Values("sleepy_wall_2d", "block_impact_2d",
                                            "explicit_touching_2d"));
 
