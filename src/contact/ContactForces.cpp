@@ -201,12 +201,12 @@ ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const Bound
     releaseSleepy(time);
   if (_cp.count > 0 || decomposed)
   {
-    if (_has_constraints || _self_contact_planes > 0)
+    if (constraintsLive())
       allocateTieRows();
     jointForces(nodes, dt);
     if (_has_explicit)
       recordApproach(nodes);
-    if (_has_constraints || _self_contact_planes > 0)
+    if (constraintsLive())
       constraintPasses(nodes, dt);
   }
   return finish(nodes, dt, cycle, time);

@@ -127,7 +127,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
         const auto e = by_nodes.find(sortedNodes(f));
         if (e == by_nodes.end())
           throw InputError(key + ".face_set: face set '" + spec.face_set +
-                           "' holds a face that is not an faces element face");
+                           "' holds a face that is not an external element face");
         take(e->second);
       }
       if (globalCount(in, selected) == 0)

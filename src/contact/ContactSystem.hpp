@@ -136,8 +136,6 @@ public:
   /// faces of the elements eroded since the last search leave, the faces they expose join.
   /// Returns whether the own faces' activity changed (ownFaces() then tells other ranks).
   bool applyErosion();
-  /// \brief The eroded elements the contact knows of (global ids, ascending; restart).
-  const std::vector<Index> &erodedElements() const { return _eroded; }
   /// \brief Per ghost face (order of setGhostFaces): 1 if a live CP uses it. Until the next
   /// search only these need fresh ghost data.
   std::vector<char> ghostFacesInPlanes() const;
@@ -221,6 +219,8 @@ private:
   Index _self_contact_planes = 0;     ///< self-contact CPs (11.5) since the last search, all ranks
   /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
   bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }
+  /// \brief Whether velocity-constraint CPs (ties, slide lines) may be live
+  bool constraintsLive() const { return _has_constraints || _self_contact_planes > 0; }
   bool _has_sleepy = false;            ///< a sleepy surface: its CPs switch (releaseSleepy)
   bool _failure_from_elements = false; ///< ... on a measure of their elements, not the time
   IndexView _damage_slot;              ///< per material: its history slot of damage, or -1
