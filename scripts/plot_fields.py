@@ -288,9 +288,11 @@ def extent(runs, rows, mirror=False):
 
 
 def figure_2d(runs, rows, name=None, vrange=None, edges=False, contacts=False, mirror=False,
-              width=3.6):
+              width=3.6, cmap="turbo", values_of=None):
     """The figure of a 2D field (or with `name` None the bare meshes): a row of panels, or with
-    two runs a row per time (runs[0] left); one colour scale over `vrange` (SI)."""
+    two runs a row per time (runs[0] left); one colour scale over `vrange` (SI). `values_of`
+    (run, frame) -> values replaces the field's own values (masked cells as NaN, drawn in the
+    colour map's 'bad' colour)."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -313,8 +315,11 @@ def figure_2d(runs, rows, name=None, vrange=None, edges=False, contacts=False, m
     for i, (_, row) in enumerate(rows):
         for j, (run, k) in enumerate(zip(runs, row)):
             ax = axes[i, j] if two else axes[0, i]
-            values = getter(run.frames[k]) / factor if name else None
-            m = draw_panel(ax, run, k, name, centre, values, norm, edges=edges,
+            values = None
+            if name:
+                raw = values_of(run, run.frames[k]) if values_of else getter(run.frames[k])
+                values = raw / factor
+            m = draw_panel(ax, run, k, name, centre, values, norm, cmap=cmap, edges=edges,
                            contacts=contacts, mirror=mirror, length=length)
             ax.set_xlim(lo_xy[0] / length, hi_xy[0] / length)
             ax.set_ylim(lo_xy[1] / length, hi_xy[1] / length)
