@@ -18,6 +18,8 @@
 ///   dilatancy        d theta_d = beta d eps_p,  beta = beta0 max(0, 1 - p / p_bd)
 ///   damage           D = min(1, theta_d / eps_d),  theta_d = accumulated dilatant strain
 ///   tension cut-off  p >= -T,  T = T0 (1 - D)  (opening beyond it is dilatant strain too)
+///   crack band       with G_f: an opening strain eps_t = 2 G_f / (T0 L) takes T to zero
+///                    in an element of length L, so a crack costs G_f whatever the mesh
 /// See docs/theory_materials.md for the derivation and the parameter sets.
 #include "material/MaterialMath.hpp"
 #include "material/MaterialParams.hpp"
@@ -40,6 +42,7 @@ constexpr int kGeoBeta = 9;      ///< dilatancy ratio beta0 = d theta_d / d eps_
 constexpr int kGeoPbd = 10;      ///< pressure at which dilatancy vanishes [Pa]
 constexpr int kGeoEpsD = 11;     ///< dilatant volumetric strain at full damage [-]
 constexpr int kGeoHc = 12;       ///< compaction hardening: strength factor 1 + h_c at lock [-]
+constexpr int kGeoGf = 13;       ///< fracture energy G_f of the tensile softening [J/m^2]; 0 = off
 
 // history layout
 constexpr int kGeoHistDamage = 0;  ///< D [-]
@@ -136,22 +139,35 @@ KOKKOS_INLINE_FUNCTION void geoCrush(const MaterialParams &p, GeoState &g)
   g.P = geoBulk(p, g.theta_c) * (g.theta - g.theta_p);
 }
 
+/// \brief Opening strain eps_t [-] that takes the tensile strength from T0 to zero in an
+/// element of characteristic length L [m]: the crack band 2 G_f / (T0 L) with a fracture
+/// energy (the softening line then dissipates T0 eps_t / 2 = G_f / L per unit volume), else
+/// eps_d (softening per unit volume, whatever the element's size).
+KOKKOS_INLINE_FUNCTION Real geoTensileOpening(const MaterialParams &p, Real L)
+{
+  const Real *m = p.model_params;
+  return m[kGeoGf] > 0 ? 2 * m[kGeoGf] / (m[kGeoT0] * L) : m[kGeoEpsD];
+}
+
 /// \brief Tension cut-off with softening: opening beyond p = -T0 (1 - D) is dilatant strain,
-/// which raises D. K (theta - x) = -T0 (1 - (theta_d + theta_p - x)/eps_d) is linear in the
-/// new theta_p = x; full damage leaves p = 0.
-KOKKOS_INLINE_FUNCTION void geoTension(const MaterialParams &p, GeoState &g)
+/// which raises D by (eps_d / eps_t) per unit opening (eps_t: geoTensileOpening).
+/// K (theta - x) = -T0 (1 - (theta_d + (theta_p - x) eps_d / eps_t)/eps_d) is linear in the
+/// new theta_p = x; full damage leaves p = 0. An element too large for its crack band
+/// (eps_t <= T0 / K: the softening would snap back) breaks at once.
+KOKKOS_INLINE_FUNCTION void geoTension(const MaterialParams &p, Real eps_t, GeoState &g)
 {
   const Real t0 = p.model_params[kGeoT0], ed = p.model_params[kGeoEpsD];
   if (g.P >= -t0 * (1 - g.D))
     return;
   const Real K = geoBulk(p, g.theta_c);
-  const Real den = t0 / ed - K;
-  Real x = den < 0 ? (-t0 + t0 * (g.theta_d + g.theta_p) / ed - K * g.theta) / den : g.theta;
-  Real td = g.theta_d + (g.theta_p - x);
+  const Real gain = ed / eps_t; // exactly 1 without a fracture energy
+  const Real den = t0 / eps_t - K;
+  Real x = den < 0 ? (-t0 + t0 * (g.theta_d + g.theta_p * gain) / ed - K * g.theta) / den : g.theta;
+  Real td = g.theta_d + (g.theta_p - x) * gain;
   if (den >= 0 || td >= ed)
   {
     x = g.theta; // fully damaged: no tension left
-    td = g.theta_d + (g.theta_p - x);
+    td = g.theta_d + (g.theta_p - x) * gain;
   }
   g.theta_d = td;
   g.theta_p = x;
@@ -197,7 +213,8 @@ KOKKOS_INLINE_FUNCTION Real geomaterialUpdate(const MaterialParams &p, const Mat
   g.theta = g.theta_p + p_old / K_old + kmath::log(st.rho_new / st.rho_old);
   g.P = K_old * (g.theta - g.theta_p);
   geoCrush(p, g);
-  geoTension(p, g);
+  const Real eps_t = geoTensileOpening(p, st.length);
+  geoTension(p, eps_t, g);
 
   Real s[6];
   for (int k = 0; k < 6; ++k)
@@ -221,7 +238,7 @@ KOKKOS_INLINE_FUNCTION Real geomaterialUpdate(const MaterialParams &p, const Mat
     g.theta_p -= bd;
     g.theta_d += bd;
     g.D = geoDamage(p, g.theta_d);
-    geoTension(p, g);
+    geoTension(p, eps_t, g);
   }
 
   history[kGeoHistDamage] = g.D;

@@ -66,7 +66,8 @@ const std::vector<KeyRule> &modelKeys(const std::string &model)
                                            {"crush_pressure", false, 0},
                                            {"lock_pressure", false, 0},
                                            {"solid_bulk_modulus", false, 0},
-                                           {"compaction_hardening", false, 0}};
+                                           {"compaction_hardening", false, 0},
+                                           {"fracture_energy", false, 0}};
   static const std::vector<KeyRule> he = {{"density", true, 0},
                                           {"D", false, 0},
                                           {"pcj", false, 0},
@@ -217,7 +218,8 @@ void validateGeomaterial(const MaterialSpec &spec, const MaterialParams &p)
 {
   for (const char *k : {"intact_strength", "tensile_strength", "damage_strain"})
     requirePositive(spec, k);
-  for (const char *k : {"intact_friction", "damaged_friction", "dilatancy", "compaction_hardening"})
+  for (const char *k : {"intact_friction", "damaged_friction", "dilatancy", "compaction_hardening",
+                        "fracture_energy"})
     requireNonNegative(spec, k);
   requirePositive(spec, "dilatancy_pressure");
   if (!(get(spec, "max_strength", 0) > get(spec, "intact_strength", 0)))
@@ -402,7 +404,7 @@ MaterialParams convert(const MaterialSpec &spec)
     set(kGeoYmax, "max_strength"), set(kGeoMuD, "damaged_friction");
     set(kGeoT0, "tensile_strength"), set(kGeoBeta, "dilatancy");
     set(kGeoPbd, "dilatancy_pressure"), set(kGeoEpsD, "damage_strain");
-    set(kGeoHc, "compaction_hardening");
+    set(kGeoHc, "compaction_hardening"), set(kGeoGf, "fracture_energy");
     break;
   case MaterialModel::HighExplosive:
     set(kJwlA, "eos.A"), set(kJwlB, "eos.B"), set(kJwlR1, "eos.R1"), set(kJwlR2, "eos.R2");

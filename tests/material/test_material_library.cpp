@@ -117,6 +117,7 @@ TEST(MaterialLibrary, BadParametersNameTheKey)
   expectError(with(limestone(), "solid_bulk_modulus", 5e12), "solid_bulk_modulus"); // too stiff
   expectError(without(limestone(), "crush_pressure"), "crush_pressure");
   expectError(with(limestone(), "tensile_strength", -1), "tensile_strength");
+  expectError(with(limestone(), "fracture_energy", -100), "fracture_energy");
   MaterialSpec mg = limestone();
   mg.eos = "mie_gruneisen";
   mg.lines["eos.type"] = 42;
