@@ -84,6 +84,20 @@ struct MeshSpec
   std::string file;     ///< gmsh: path to .msh 4.1 ASCII (relative to the deck)
 };
 
+/// \brief A part's mesh moved as a rigid body: rotated by `angle` about the line through
+/// `point` along `axis` (2D: about z), then translated.
+struct PartPlacement
+{
+  Real angle = 0;                           ///< [deg], right-handed about `axis`
+  std::array<Real, 3> axis{{0, 0, 1}};      ///< unit vector
+  std::array<Real, 3> point{{0, 0, 0}};     ///< [m]
+  std::array<Real, 3> translate{{0, 0, 0}}; ///< [m]
+  bool moves() const
+  {
+    return angle != 0 || translate[0] != 0 || translate[1] != 0 || translate[2] != 0;
+  }
+};
+
 struct PartSpec
 {
   std::string name;
@@ -91,6 +105,7 @@ struct PartSpec
   MeshSpec mesh;
   std::array<Real, 3> initial_velocity{{0, 0, 0}};
   bool merge_nodes = false; ///< merge nodes coincident with other merge_nodes parts
+  PartPlacement placement;  ///< where the generated or read mesh is put
 };
 
 /// \brief A named set selected by part, by box, or by both (the part's nodes/faces in the box).

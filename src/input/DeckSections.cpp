@@ -4,6 +4,7 @@
 #include "input/DeckSections.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace scpdyn
 {
@@ -180,13 +181,48 @@ void checkPartReference(const YamlValue &v, const std::string &part, const DeckN
     v.fail("no part name starts with '" + prefix + "'");
 }
 
+namespace
+{
+/// \brief `translate` and `rotate` of a part (docs/input.md, parts).
+PartPlacement parsePlacement(const YamlMap &part, int dim)
+{
+  PartPlacement pl;
+  if (part.has("translate"))
+    pl.translate = part["translate"].realVector(dim);
+  if (!part.has("rotate"))
+    return pl;
+  const YamlValue value = part["rotate"];
+  if (dim == 1)
+    value.fail("a 1D part cannot rotate");
+  const YamlMap r = value.map({"angle", "axis", "point"});
+  pl.angle = r["angle"].real();
+  if (r.has("point"))
+    pl.point = r["point"].realVector(dim);
+  if (dim == 2)
+  {
+    if (r.has("axis"))
+      r["axis"].fail("2D parts rotate in the x-y plane, about z: no axis to give");
+    return pl;
+  }
+  const YamlValue a = r["axis"];
+  const std::array<Real, 3> v = a.realVector(3);
+  const Real norm = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(norm > 0))
+    a.fail("the rotation axis must not be zero");
+  for (int k = 0; k < 3; ++k)
+    pl.axis[size_t(k)] = v[size_t(k)] / norm;
+  return pl;
+}
+} // namespace
+
 void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::path &deck_dir)
 {
   if (!root.has("parts"))
     root.missing("parts");
   for (const YamlValue &item : root["parts"].list(1))
   {
-    const YamlMap m = item.map({"name", "material", "mesh", "initial_velocity", "merge_nodes"});
+    const YamlMap m = item.map(
+        {"name", "material", "mesh", "initial_velocity", "merge_nodes", "translate", "rotate"});
     PartSpec part;
     part.name = m["name"].string();
     claimName(names.parts, m["name"], part.name);
@@ -196,6 +232,7 @@ void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::pat
     if (m.has("initial_velocity"))
       part.initial_velocity = m["initial_velocity"].realVector(deck.dimension);
     part.merge_nodes = m.boolean("merge_nodes", false);
+    part.placement = parsePlacement(m, deck.dimension);
     deck.parts.push_back(part);
   }
 }

@@ -299,7 +299,21 @@ std::string resolvedDeckText(const Deck &deck)
     text(out << YAML::Key << "material" << YAML::Value, p.material);
     writeMesh(out, p.mesh, dim);
     vector(out, "initial_velocity", p.initial_velocity, dim);
-    out << YAML::Key << "merge_nodes" << YAML::Value << p.merge_nodes << YAML::EndMap;
+    out << YAML::Key << "merge_nodes" << YAML::Value << p.merge_nodes;
+    const auto &t = p.placement.translate;
+    if (t[0] != 0 || t[1] != 0 || t[2] != 0)
+      vector(out, "translate", t, dim);
+    if (p.placement.angle != 0 && dim > 1)
+    {
+      out << YAML::Key << "rotate" << YAML::Value << YAML::BeginMap << YAML::Key << "angle"
+          << YAML::Value;
+      real(out, p.placement.angle);
+      if (dim == 3)
+        vector(out, "axis", p.placement.axis, 3);
+      vector(out, "point", p.placement.point, dim);
+      out << YAML::EndMap;
+    }
+    out << YAML::EndMap;
   }
   out << YAML::EndSeq;
   writeSets(out, "node_sets", deck.node_sets, dim);

@@ -252,6 +252,26 @@ std::vector<HostFace> interiorFaces(const HostMesh &mesh, const std::vector<char
   return out;
 }
 
+void moveNodesRigidly(HostMesh &mesh, std::size_t first, Real angle,
+                      const std::array<Real, 3> &axis, const std::array<Real, 3> &point,
+                      const std::array<Real, 3> &shift)
+{
+  const Real c = std::cos(angle), s = std::sin(angle);
+  const std::array<Real, 3> &k = axis;
+  for (std::size_t n = first; n < mesh.coords.size(); ++n)
+  {
+    std::array<Real, 3> &x = mesh.coords[n];
+    const Real v[3] = {x[0] - point[0], x[1] - point[1], x[2] - point[2]};
+    const Real kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
+    const Real kxv[3] = {k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2],
+                         k[0] * v[1] - k[1] * v[0]};
+    // v cos + (k x v) sin + k (k.v)(1 - cos)
+    for (int d = 0; d < 3; ++d)
+      x[size_t(d)] =
+          point[size_t(d)] + v[d] * c + kxv[d] * s + k[size_t(d)] * kv * (1 - c) + shift[size_t(d)];
+  }
+}
+
 void mergeCoincidentNodes(HostMesh &mesh, const std::vector<int> &parts, Real tolerance)
 {
   if (!(tolerance >= 0))

@@ -54,6 +54,13 @@ std::vector<HostFace> interiorFaces(const HostMesh &mesh, const std::vector<char
 /// Uses a sorted grid of cell size `tolerance`: O(n log n).
 void mergeCoincidentNodes(HostMesh &mesh, const std::vector<int> &parts, Real tolerance);
 
+/// \brief Moves nodes [first, end) as a rigid body: rotation by `angle` [rad] about the line
+/// through `point` along the unit vector `axis` (Rodrigues' formula; 2D meshes: axis z), then
+/// translation by `shift`.
+void moveNodesRigidly(HostMesh &mesh, std::size_t first, Real angle,
+                      const std::array<Real, 3> &axis, const std::array<Real, 3> &point,
+                      const std::array<Real, 3> &shift);
+
 /// \brief Sorted ids of nodes inside the box [lo - tol, hi + tol] (m) in every coordinate.
 std::vector<Index> nodesInBox(const HostMesh &mesh, std::array<Real, 3> lo, std::array<Real, 3> hi,
                               Real tol);

@@ -209,6 +209,7 @@ void ModelSetup::setupMesh()
     const PartSpec &spec = _m.deck.parts[s];
     const std::string key = "parts[" + std::to_string(s) + "].mesh";
     const size_t first_part = _m.mesh.parts.size();
+    const size_t first_node = _m.mesh.coords.size();
     try
     {
       const MeshSpec &m = spec.mesh;
@@ -236,6 +237,9 @@ void ModelSetup::setupMesh()
     {
       throw InputError(_m.deck.path + ": " + key + ": " + e.what());
     }
+    const PartPlacement &pl = spec.placement;
+    if (pl.moves())
+      moveNodesRigidly(_m.mesh, first_node, pl.angle * M_PI / 180, pl.axis, pl.point, pl.translate);
     const int mat = materialIndex(_m.deck, spec.material);
     for (size_t p = first_part; p < _m.mesh.parts.size(); ++p)
     {

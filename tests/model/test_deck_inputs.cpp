@@ -76,6 +76,58 @@ TEST(DeckInputs, NodeSetOfPartAndBox)
   EXPECT_EQ(s.model().node_sets.at("band").size(), 6u); // both blocks' copies
 }
 
+// Part placement: a 3D bar turned 60 deg about y through (0.05, 0, 0) and then shifted lands
+// every node where the rotation matrix about y puts it (1e-12 m: round-off of a metre-sized
+// mesh); a second, unplaced part stays put; a 2D square turned 90 deg about its centre maps
+// onto its own node positions. Node sets by box see the moved nodes.
+TEST(DeckInputs, PartsTurnAndShiftAsRigidBodies)
+{
+  const std::string deck3 =
+      "dimension: 3\ntime: {end: 1.0e-6}\n" + kRock +
+      "parts:\n  - {name: bar, material: rock, mesh: {elements: [1, 1, 4], size: [0.1, 0.1, "
+      "1.0]},\n     rotate: {angle: 60, axis: [0, 2, 0], point: [0.05, 0, 0]}, translate: [1, 2, "
+      "3]}\n"
+      "  - {name: block, material: rock, mesh: {elements: [1, 1, 1], origin: [5, 5, 5], size: "
+      "[0.1, 0.1, 0.1]}}\n"
+      "node_sets:\n  - {name: moved_top, box: {min: [-10, -10, 3.2], max: [4, 4, 4]}}\n";
+  Solver s(deckFromText(deck3, "place_3d"));
+  const HostMesh &m = s.model().mesh;
+  ASSERT_EQ(m.coords.size(), 20u + 8u);
+  const double c = std::cos(M_PI / 3), sn = std::sin(M_PI / 3);
+  size_t n = 0, tops = 0;
+  for (int k = 0; k <= 4; ++k)
+    for (int j = 0; j <= 1; ++j)
+      for (int i = 0; i <= 1; ++i)
+      {
+        // the generator's node order: x fastest, then y, then z
+        const double x = 0.1 * i - 0.05, y = 0.1 * j, z = 0.25 * k;
+        const double want[3] = {0.05 + x * c + z * sn + 1, y + 2, -x * sn + z * c + 3};
+        const auto &got = m.coords[n++];
+        for (int d = 0; d < 3; ++d)
+          EXPECT_NEAR(got[size_t(d)], want[d], 1e-12) << "node " << n - 1 << " component " << d;
+        tops += want[2] >= 3.2 ? 1 : 0;
+      }
+  for (; n < m.coords.size(); ++n)
+    EXPECT_GE(m.coords[n][0], 5.0); // the second part is not moved
+  EXPECT_EQ(s.model().node_sets.at("moved_top").size(), tops);
+
+  const std::string deck2 =
+      "dimension: 2\ntime: {end: 1.0e-6}\n" + kRock +
+      "parts:\n  - {name: sq, material: rock, mesh: {elements: [2, 2], size: [0.1, 0.1]}, "
+      "rotate: {angle: 90, point: [0.05, 0.05]}}\n";
+  Solver s2(deckFromText(deck2, "place_2d"));
+  const HostMesh &q = s2.model().mesh;
+  for (const auto &x : q.coords)
+  {
+    // the turned grid is the grid: every coordinate a multiple of 0.05
+    EXPECT_NEAR(std::remainder(x[0], 0.05), 0.0, 1e-15);
+    EXPECT_NEAR(std::remainder(x[1], 0.05), 0.0, 1e-15);
+  }
+  // node 0 at (0, 0) turns to (0.1, 0)
+  EXPECT_NEAR(q.coords[0][0], 0.1, 1e-15);
+  EXPECT_NEAR(q.coords[0][1], 0.0, 1e-15);
+}
+
 // initial_conditions: a uniform velocity on one node set, then a rigid rotation about the
 // block's centre on another (v = w x (x - c), gradient [[0, -w], [w, 0]]): every node of the
 // second set gets exactly that field, the others keep the earlier values, and the rotating
