@@ -68,12 +68,6 @@ CpState unpackState(const double *o)
   return s;
 }
 
-template <class View>
-int components(const View &v)
-{
-  return View::rank > 1 ? int(v.extent(1)) : 1;
-}
-
 /// \brief The per-cycle fields of the CPs (the outputs of the cycle after a restart read some).
 template <class Fn>
 void eachPlaneField(const CommonPlaneData &cp, Fn &&fn)
@@ -96,7 +90,7 @@ void eachPlaneField(const CommonPlaneData &cp, Fn &&fn)
 int planeRowWidth(const CommonPlaneData &cp)
 {
   int width = 2 + kCpStateValues + 1;
-  eachPlaneField(cp, [&](const auto &v) { width += components(v); });
+  eachPlaneField(cp, [&](const auto &v) { width += flatWidth(v); });
   return width;
 }
 
@@ -133,7 +127,7 @@ void ContactSystem::saveState(RestartWriter &out, MPI_Comm comm,
   std::vector<int> widths;
   eachPlaneField(_cp, [&](const auto &f) {
     fields.push_back(flatten(f));
-    widths.push_back(components(f));
+    widths.push_back(flatWidth(f));
   });
   std::vector<double> rows;
   for (Index p = 0; p < n; ++p)
@@ -255,7 +249,7 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
   Kokkos::deep_copy(_approach, approach);
   int column = 2 + kCpStateValues;
   eachPlaneField(_cp, [&](const auto &f) {
-    const int c = components(f);
+    const int c = flatWidth(f);
     std::vector<double> flat(size_t(m) * size_t(c));
     for (Index q = 0; q < m; ++q)
       for (int j = 0; j < c; ++j)

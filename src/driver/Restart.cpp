@@ -123,12 +123,6 @@ private:
   std::unique_ptr<OutputGather> _gather;
 };
 
-template <class View>
-int components(const View &v)
-{
-  return View::rank > 1 ? int(v.extent(1)) : 1;
-}
-
 /// \brief The rows of `global` (file order, `ncomp` per row) that `row` picks for each of the
 /// first `count` entries of `v`; the entries after them (ghost nodes) keep their values.
 template <class View, class Row>
@@ -183,11 +177,11 @@ void Solver::saveState(RestartWriter &out) const
   // a field a run does not keep (an empty View) is written empty
   eachNodeField(_m.nodes, [&](const char *name, const auto &v) {
     out.put(name,
-            v.extent(0) ? order.gatherNodes(flatten(v), components(v)) : std::vector<double>());
+            v.extent(0) ? order.gatherNodes(flatten(v), flatWidth(v)) : std::vector<double>());
   });
   eachElementField(_m.elems, [&](const char *name, const auto &v) {
     out.put(name,
-            v.extent(0) ? order.gatherElements(flatten(v), components(v)) : std::vector<double>());
+            v.extent(0) ? order.gatherElements(flatten(v), flatWidth(v)) : std::vector<double>());
   });
   if (_m.contact)
     _m.contact->saveState(out, _m.dd ? _m.comm : MPI_COMM_NULL, nodeSlotGlobalIds(), _m.nodes.v);
@@ -232,12 +226,12 @@ void Solver::loadState(const RestartReader &in)
   if (!error.empty())
     throw InputError(error);
   eachNodeField(_m.nodes, [&](const char *name, const auto &v) {
-    const int c = v.extent(0) ? components(v) : 0;
+    const int c = v.extent(0) ? flatWidth(v) : 0;
     scatterRows(v, _m.nodes.count, in.reals(name, order.nodes() * c), c,
                 [&](Index n) { return order.nodeRow(n); });
   });
   eachElementField(_m.elems, [&](const char *name, const auto &v) {
-    const int c = v.extent(0) ? components(v) : 0;
+    const int c = v.extent(0) ? flatWidth(v) : 0;
     scatterRows(v, _m.elems.count, in.reals(name, order.elements() * c), c,
                 [&](Index e) { return order.elementRow(e); });
   });

@@ -177,8 +177,8 @@ void expectRows(const std::string &full, const std::string &restarted, bool bitw
       continue;
     bool bitwise = true;
     const double worst = worstRowDifference(full + "/" + csv, restarted + "/" + csv, bitwise);
-    std::printf("[restart decomposed] %s %-12s %s, worst relative difference %.3e\n",
-                what.c_str(), csv, bitwise ? "bitwise" : "not bitwise", worst);
+    std::printf("[restart decomposed] %s %-12s %s, worst relative difference %.3e\n", what.c_str(),
+                csv, bitwise ? "bitwise" : "not bitwise", worst);
     if (bitwise_expected)
       EXPECT_TRUE(bitwise) << what << " " << csv;
     EXPECT_LE(worst, tolerance) << what << " " << csv;
@@ -197,8 +197,8 @@ void expectSameOutputs(const std::string &a, const std::string &b, const std::st
 
 std::string workDir(const std::string &name)
 {
-  const std::string dir = std::string(SCPDYN_TEST_WORKDIR) + "/restart_np" +
-                          std::to_string(mpiSize()) + "/" + name;
+  const std::string dir =
+      std::string(SCPDYN_TEST_WORKDIR) + "/restart_np" + std::to_string(mpiSize()) + "/" + name;
   if (mpiRank() == 0)
     fs::remove_all(dir);
   MPI_Barrier(MPI_COMM_WORLD);
@@ -247,7 +247,8 @@ TEST_P(RestartDecomposed, AnotherRankCountContinuesToRoundOff)
   // 1e-9: the rank-count invariance of the uninterrupted runs (RunHistoriesDecomposed)
   const std::string n = std::to_string(np), m = std::to_string(np - 1), deck = GetParam();
   expectRows(dir + "/full_np", dir + "/more", false, 1e-9, deck + " " + m + " -> " + n + " ranks");
-  expectRows(dir + "/full_fewer", dir + "/fewer", false, 1e-9, deck + " " + n + " -> " + m + " ranks");
+  expectRows(dir + "/full_fewer", dir + "/fewer", false, 1e-9,
+             deck + " " + n + " -> " + m + " ranks");
 }
 
 // decks whose cycles read contact histories: a quasi-implicit joint, an explicit one (its time
