@@ -1,12 +1,13 @@
 // Restart files of decomposed runs (docs/input.md, `output`): a run continued at the rank
 // count that wrote the file is the uninterrupted run bit for bit (its rows and frames after the
-// restart cycle, in another directory and in its own); a file written at one rank count and
+// restart cycle in another directory; every file it continues in its own); a file written at one rank count and
 // read at another (np - 1 -> np and np -> np - 1) gives the uninterrupted run's rows to round-off
 // (1e-9 of each column's largest magnitude, the rank-count invariance of the solver); a bad file
 // is refused on every rank together. The deck: two blocks meeting at a quasi-implicit joint
 // with its histories, searched every 2 cycles, CPs and a joint gauge on several ranks; an
 // explicit joint; a sleepy wall with a slide line.
 #include "../TestUtil.hpp"
+#include "Hdf5Frames.hpp"
 #include "ParallelTestUtil.hpp"
 
 #include "core/InputError.hpp"
@@ -185,14 +186,44 @@ void expectRows(const std::string &full, const std::string &restarted, bool bitw
   }
 }
 
-/// Rank 0: the whole text of the CSVs and fields.xmf of `b` is `a`'s.
+/// Rank 0: every frame of the field and contact files of `b` is the frame of that cycle in
+/// `a` (`a`'s last frames; all of them when `b` continued `a`'s files), every dataset bit for bit.
+void expectSameFrames(const std::string &a, const std::string &b, const std::string &what)
+{
+  if (mpiRank() != 0)
+    return;
+  for (const char *h5 : {"fields.h5", "contacts.h5"})
+  {
+    const std::string fa = a + "/" + h5, fb = b + "/" + h5;
+    if (!fs::exists(fa))
+      continue;
+    const hsize_t na = frameCount(fa), nb = frameCount(fb);
+    ASSERT_GE(nb, 2u) << what << " " << h5;
+    ASSERT_LE(nb, na) << what << " " << h5;
+    for (hsize_t k = 0; k < nb; ++k)
+    {
+      const auto da = datasetBytes(fa, "frames/" + std::to_string(na - nb + k));
+      const auto db = datasetBytes(fb, "frames/" + std::to_string(k));
+      ASSERT_FALSE(da.empty()) << what << " " << h5;
+      ASSERT_EQ(da.size(), db.size()) << what << " " << h5;
+      for (size_t d = 0; d < da.size(); ++d)
+        EXPECT_TRUE(da[d].first == db[d].first && da[d].second == db[d].second)
+            << what << " " << h5 << " frame " << k << ": " << da[d].first;
+    }
+  }
+}
+
+/// Rank 0: the whole text of the CSVs and fields.xmf of `b` is `a`'s, and so are its frames.
 void expectSameOutputs(const std::string &a, const std::string &b, const std::string &what)
 {
   if (mpiRank() != 0)
     return;
-  for (const char *f : {"history.csv", "gauges.csv", "rcforc.csv", "matsum.csv", "fields.xmf"})
+  for (const char *f :
+       {"history.csv", "gauges.csv", "rcforc.csv", "matsum.csv", "fields.xmf", "contacts.xmf"})
     if (fs::exists(a + "/" + f))
       EXPECT_TRUE(readText(a + "/" + f) == readText(b + "/" + f)) << what << ": " << f;
+  ASSERT_EQ(frameCount(a + "/fields.h5"), frameCount(b + "/fields.h5")) << what;
+  expectSameFrames(a, b, what);
 }
 
 std::string workDir(const std::string &name)
@@ -220,14 +251,15 @@ TEST_P(RestartDecomposed, SameRankCountContinuesBitwise)
   const std::string half = broadcastText(firstRestartFile(dir + "/full"));
   ASSERT_FALSE(half.empty());
   runOn(np, yaml, dir + "/restarted", half);
-  expectRows(dir + "/full", dir + "/restarted", true, 0.0,
-             std::string(GetParam()) + " np " + std::to_string(np));
+  const std::string what = std::string(GetParam()) + " np " + std::to_string(np);
+  expectRows(dir + "/full", dir + "/restarted", true, 0.0, what);
+  expectSameFrames(dir + "/full", dir + "/restarted", what);
 
   // in place: a run stopped at the restart cycle, continued in its own directory
   const long cycle = std::stol(fs::path(half).filename().string().substr(8));
   runOn(np, stoppedAt(yaml, cycle), dir + "/stopped");
   runOn(np, yaml, dir + "/stopped", dir + "/stopped/" + fs::path(half).filename().string());
-  expectSameOutputs(dir + "/full", dir + "/stopped", "in place, np " + std::to_string(np));
+  expectSameOutputs(dir + "/full", dir + "/stopped", "in place, " + what);
 }
 
 TEST_P(RestartDecomposed, AnotherRankCountContinuesToRoundOff)
