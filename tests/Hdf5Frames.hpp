@@ -13,7 +13,7 @@ namespace scpdyn::test
 
 /// The raw bytes of every dataset under `group` of `file`, by path.
 inline std::vector<std::pair<std::string, std::vector<char>>> datasetBytes(const std::string &file,
-                                                                    const std::string &group)
+                                                                           const std::string &group)
 {
   std::vector<std::pair<std::string, std::vector<char>>> out;
   const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
