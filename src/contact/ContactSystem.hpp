@@ -9,6 +9,8 @@
 #include "contact/ContactSearch.hpp"
 #include "contact/ContactSetup.hpp"
 
+#include <mpi.h>
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -157,11 +159,17 @@ public:
   /// \brief The live CPs, copied to the host.
   ContactPointsHost points() const;
   /// \brief The CPs (by face keys, 3.5, with their histories) and the contact accumulators,
-  /// for a restart file (contact/ContactRestart.cpp). One rank only.
-  void saveState(RestartWriter &out) const;
-  /// \brief The state saveState() wrote; the CPs' faces are found by key and their parameters
-  /// averaged again (3.6).
-  void loadState(const RestartReader &in);
+  /// for a restart file (contact/ContactRestart.cpp). Collective over `comm` (MPI_COMM_NULL:
+  /// one rank): every CP once (from the rank of its face 1), ascending face keys; each rank's
+  /// own sums and impulses by rank and global node. `node_global`: the global id of each node
+  /// slot, ghost nodes included; `v` the nodal velocities.
+  void saveState(RestartWriter &out, MPI_Comm comm, const std::vector<Index> &node_global,
+                 const VectorView &v) const;
+  /// \brief The state saveState() wrote, at any rank count: each rank takes the CPs with a face
+  /// of its own and the other of its own or a ghost face (the ghost faces are chosen first),
+  /// found by key, their parameters averaged again (3.6). At the writer's rank count the ranks
+  /// take their own partial sums back; at another, rank 0 takes their totals.
+  void loadState(const RestartReader &in, MPI_Comm comm, const std::vector<Index> &node_global);
   /// \brief "common plane 3 between faces (element 12 face 1 of part 'a') and (element 40 face
   /// 3 of part 'b') of contact surface 'j' (option implicit)".
   std::string describe(Index cp) const;
@@ -205,6 +213,8 @@ private:
   ContactFaceData _own; ///< this rank's faces (= _faces without ghosts)
   std::vector<ContactFaceInfo> _own_info;
   std::vector<Index> _ghost_of_face; ///< per face: its index among the ghosts, or -1
+  void loadRankPartials(const RestartReader &in, MPI_Comm comm,
+                        const std::vector<Index> &node_global);
   ContactComm _comm;
   std::vector<std::string> _part_names;
   std::vector<std::string> _surface_labels; ///< per surface: "'name' (option o)", for messages

@@ -23,6 +23,13 @@ DeviceView<T *> toDevice(const std::vector<T> &host, const std::string &label)
   return v;
 }
 
+/// \brief The values per entry (row) of `v` in flatten(), whatever its number of rows.
+template <class View>
+int flatWidth(const View &v)
+{
+  return View::rank > 1 ? int(v.extent(1)) : 1;
+}
+
 /// \brief The entries of `v` (rank 1 or 2) as doubles, row by row.
 template <class View>
 std::vector<double> flatten(const View &v)

@@ -46,6 +46,11 @@ void Solver::stepExchangeFaceConnectivity()
   if (!_m.contact || !_m.dd || !_m.contact->searchDue(_cycle))
     return;
   ScopedStep t(_timers, "04_face_connectivity");
+  rebuildGhostFaces();
+}
+
+void Solver::rebuildGhostFaces()
+{
   // this rank's faces at the half step (as the search will see them): centroid (node mean)
   // and size (twice the largest node distance from it, with the 1D element's other node)
   const std::vector<GhostFaceDesc> &own = _m.dd->own_faces;

@@ -1,10 +1,31 @@
 // Gather of a decomposed run's fields to rank 0 (see OutputGather.hpp).
 #include "driver/OutputGather.hpp"
 
+#include "parallel/Decomposition.hpp"
+
 #include <stdexcept>
 
 namespace scpdyn
 {
+
+std::vector<long> ownedNodeRows(const DomainDecomposition &dd)
+{
+  std::vector<long> rows(dd.owned.size(), -1);
+  for (size_t n = 0; n < rows.size(); ++n)
+    if (dd.owned[n])
+      rows[n] = dd.global_node[n];
+  return rows;
+}
+
+std::vector<long> cellRows(const DomainDecomposition &dd)
+{
+  return std::vector<long>(dd.output_cell.begin(), dd.output_cell.end());
+}
+
+OutputGather::OutputGather(MPI_Comm comm, const DomainDecomposition &dd)
+    : OutputGather(comm, dd.global_nodes, dd.global_elements, ownedNodeRows(dd), cellRows(dd))
+{
+}
 
 OutputGather::OutputGather(MPI_Comm comm, long global_nodes, long global_cells,
                            std::vector<long> node_rows, std::vector<long> cell_rows)
@@ -78,6 +99,11 @@ std::vector<T> OutputGather::gather(const Plan &p, const std::vector<T> &local, 
 std::vector<double> OutputGather::nodes(const std::vector<double> &local, int ncomp) const
 {
   return gather(_nodes, local, ncomp, MPI_DOUBLE);
+}
+
+std::vector<double> OutputGather::cells(const std::vector<double> &local, int ncomp) const
+{
+  return gather(_cells, local, ncomp, MPI_DOUBLE);
 }
 
 std::vector<int> OutputGather::cellsInt(const std::vector<int> &local, int ncomp) const

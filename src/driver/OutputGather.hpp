@@ -10,6 +10,13 @@
 namespace scpdyn
 {
 
+struct DomainDecomposition;
+
+/// \brief For each local node its global row, -1 where another rank owns it.
+std::vector<long> ownedNodeRows(const DomainDecomposition &dd);
+/// \brief For each local device element its row in the serial cell order.
+std::vector<long> cellRows(const DomainDecomposition &dd);
+
 class OutputGather
 {
 public:
@@ -17,6 +24,8 @@ public:
   /// `cell_rows`: the global row of each local cell. Collective over `comm`.
   OutputGather(MPI_Comm comm, long global_nodes, long global_cells, std::vector<long> node_rows,
                std::vector<long> cell_rows);
+  /// \brief The owned nodes and the elements of `dd` (ownedNodeRows(), cellRows()).
+  OutputGather(MPI_Comm comm, const DomainDecomposition &dd);
 
   /// \brief A per-node field with `ncomp` components per local node (local node order): the
   /// global field on rank 0, empty elsewhere. Collective.
@@ -24,6 +33,8 @@ public:
   /// \brief Integers per cell, local device element order (connectivity lists of variable
   /// length are gathered by the caller as fixed-width rows).
   std::vector<int> cellsInt(const std::vector<int> &local, int ncomp) const;
+  /// \brief Reals per cell, local device element order.
+  std::vector<double> cells(const std::vector<double> &local, int ncomp) const;
 
   bool root() const { return _rank == 0; }
 

@@ -293,12 +293,7 @@ void Outputs::begin(const RestartReader *restart)
   FieldDistribution dist;
   if (dd)
   {
-    std::vector<long> node_rows(dd->owned.size(), -1), cell_rows;
-    for (size_t n = 0; n < node_rows.size(); ++n)
-      if (dd->owned[n])
-        node_rows[n] = dd->global_node[n];
-    for (Index c : dd->output_cell)
-      cell_rows.push_back(c);
+    std::vector<long> node_rows = ownedNodeRows(*dd), cell_rows = cellRows(*dd);
     dist.comm = _solver.comm();
     dist.node_rows = node_rows;
     dist.cell_rows = cell_rows;
@@ -411,8 +406,6 @@ void Outputs::startTimes(const RestartReader *restart)
 
 void Outputs::writeRestart()
 {
-  if (_solver.numRanks() > 1)
-    return;
   const std::string path = restartFileName(_dir, _solver.cycles());
   if (!_restart_files.empty() && _restart_files.back() == path)
     return;
@@ -420,7 +413,8 @@ void Outputs::writeRestart()
   for (CsvWriter *c : {_history.get(), _gauges.get(), _rcforc.get(), _spcforc.get(), _matsum.get()})
     if (c)
       c->flush();
-  RestartWriter w(path, restartDeckHash(_solver.deck()));
+  RestartWriter w(path, restartDeckHash(_solver.deck()),
+                  _solver.numRanks() > 1 ? _solver.comm() : MPI_COMM_NULL);
   _solver.saveState(w);
   w.put("outputs.times", std::vector<double>{_next_field, _next_history, _next_restart,
                                              _max_balance_error, _last_balance_error});
@@ -431,7 +425,8 @@ void Outputs::writeRestart()
   while (int(_restart_files.size()) > _solver.deck().restart_keep)
   {
     std::error_code ec;
-    std::filesystem::remove(_restart_files.front(), ec);
+    if (root())
+      std::filesystem::remove(_restart_files.front(), ec);
     _restart_files.pop_front();
   }
 }

@@ -2,7 +2,7 @@
 /// \file Outputs.hpp
 /// \brief Step 13's outputs: field frames (HDF5 + XDMF), history.csv, gauges.csv (with
 /// gauges), rcforc.csv, spcforc.csv and matsum.csv at history.csv's rows (RunHistories.hpp),
-/// summary.json, the resolved deck, restart files (output.restart_interval, one rank) and a
+/// summary.json, the resolved deck, restart files (output.restart_interval) and a
 /// progress line on stderr. Before the first
 /// cycle: an estimate of the run's cycles and output size (refused above the deck's limits)
 /// in the pre-flight block (driver/Preflight.hpp), the lock of the output directory and the

@@ -6,8 +6,13 @@
 #include "contact/ContactSystem.hpp"
 #include "core/HostCopy.hpp"
 #include "core/InputError.hpp"
+#include "driver/OutputGather.hpp"
 #include "driver/Solver.hpp"
 #include "io/RestartFile.hpp"
+#include "parallel/Decomposition.hpp"
+#include "parallel/Mpi.hpp"
+
+#include <memory>
 
 namespace scpdyn
 {
@@ -84,8 +89,73 @@ std::string restartFileName(const std::string &dir, long cycle)
   return dir + "/restart_" + std::to_string(cycle) + ".h5";
 }
 
+namespace
+{
+/// \brief This rank's nodes and elements in the file's order: the global node id, and the
+/// serial device order of the elements (one rank: the local order). Collective.
+class GlobalOrder
+{
+public:
+  explicit GlobalOrder(const Model &m) : _m(m)
+  {
+    if (m.dd)
+      _gather = std::make_unique<OutputGather>(m.comm, *m.dd);
+  }
+  long nodeRow(Index n) const { return _m.dd ? long(_m.dd->global_node[size_t(n)]) : long(n); }
+  long elementRow(Index e) const { return _m.dd ? long(_m.dd->output_cell[size_t(e)]) : long(e); }
+  long nodes() const { return _m.globalNodeCount(); }
+  long elements() const { return _m.globalElementCount(); }
+  /// \brief `local` (`ncomp` values per local node or element, extra rows ignored) in the
+  /// file's order on rank 0.
+  std::vector<double> gatherNodes(std::vector<double> local, int ncomp) const
+  {
+    local.resize(size_t(_m.nodes.count) * size_t(ncomp));
+    return _gather ? _gather->nodes(local, ncomp) : local;
+  }
+  std::vector<double> gatherElements(std::vector<double> local, int ncomp) const
+  {
+    local.resize(size_t(_m.elems.count) * size_t(ncomp));
+    return _gather ? _gather->cells(local, ncomp) : local;
+  }
+
+private:
+  const Model &_m;
+  std::unique_ptr<OutputGather> _gather;
+};
+
+/// \brief The rows of `global` (file order, `ncomp` per row) that `row` picks for each of the
+/// first `count` entries of `v`; the entries after them (ghost nodes) keep their values.
+template <class View, class Row>
+void scatterRows(const View &v, Index count, const std::vector<double> &global, int ncomp, Row row)
+{
+  if (v.extent(0) == 0)
+    return;
+  std::vector<double> flat = flatten(v);
+  for (Index i = 0; i < count; ++i)
+    for (int c = 0; c < ncomp; ++c)
+      flat[size_t(i) * size_t(ncomp) + size_t(c)] =
+          global[size_t(row(i)) * size_t(ncomp) + size_t(c)];
+  unflatten(v, flat);
+}
+} // namespace
+
+std::vector<Index> Solver::nodeSlotGlobalIds() const
+{
+  std::vector<Index> id(_m.nodes.x.extent(0), -1);
+  for (Index n = 0; n < _m.nodes.count; ++n)
+    id[size_t(n)] = globalNode(n);
+  if (_m.dd && _m.dd->ghosts)
+  {
+    const std::vector<Index> &ghost = _m.dd->ghosts->ghostGlobal();
+    for (size_t g = 0; g < ghost.size() && size_t(_m.nodes.count) + g < id.size(); ++g)
+      id[size_t(_m.nodes.count) + g] = ghost[g];
+  }
+  return id;
+}
+
 void Solver::saveState(RestartWriter &out) const
 {
+  // the scalars are global (the reductions of step 12 give every rank the same), rank 0's
   out.put("solver.scalars",
           std::vector<double>{
               _time, _dt, _dt_next, double(_cycle), _external_work, _kinetic_mid, _initial_energy,
@@ -95,19 +165,26 @@ void Solver::saveState(RestartWriter &out) const
   putStep(out, "solver.smallest_step", _smallest_step);
   putStep(out, "solver.next_step", _next_step);
   putStep(out, "solver.first_step", _first_step);
-  // global ids: identity on one rank; a reader checks them against its own numbering
+  const GlobalOrder order(_m);
+  // global ids in the file's order: a reader checks them against its own numbering
   std::vector<double> node_id(size_t(_m.nodes.count)), element_id(size_t(_m.elems.count));
   for (Index n = 0; n < _m.nodes.count; ++n)
     node_id[size_t(n)] = double(globalNode(n));
   for (Index e = 0; e < _m.elems.count; ++e)
     element_id[size_t(e)] = double(globalElement(meshElementOfDevice(e)));
-  out.put("nodes.global_id", node_id);
-  out.put("elements.global_id", element_id);
-  eachNodeField(_m.nodes, [&](const char *name, const auto &v) { out.put(name, flatten(v)); });
-  eachElementField(_m.elems, [&](const char *name, const auto &v) { out.put(name, flatten(v)); });
-  out.put("bc.velocity_current", flatten(_m.bc.velocity_current));
+  out.put("nodes.global_id", order.gatherNodes(node_id, 1));
+  out.put("elements.global_id", order.gatherElements(element_id, 1));
+  // a field a run does not keep (an empty View) is written empty
+  eachNodeField(_m.nodes, [&](const char *name, const auto &v) {
+    out.put(name,
+            v.extent(0) ? order.gatherNodes(flatten(v), flatWidth(v)) : std::vector<double>());
+  });
+  eachElementField(_m.elems, [&](const char *name, const auto &v) {
+    out.put(name,
+            v.extent(0) ? order.gatherElements(flatten(v), flatWidth(v)) : std::vector<double>());
+  });
   if (_m.contact)
-    _m.contact->saveState(out);
+    _m.contact->saveState(out, _m.dd ? _m.comm : MPI_COMM_NULL, nodeSlotGlobalIds(), _m.nodes.v);
 }
 
 void Solver::loadState(const RestartReader &in)
@@ -132,25 +209,43 @@ void Solver::loadState(const RestartReader &in)
   _smallest_step = getStep(in, "solver.smallest_step");
   _next_step = getStep(in, "solver.next_step");
   _first_step = getStep(in, "solver.first_step");
-  const std::vector<double> node_id = in.reals("nodes.global_id", _m.nodes.count);
-  const std::vector<double> element_id = in.reals("elements.global_id", _m.elems.count);
-  for (Index n = 0; n < _m.nodes.count; ++n)
-    if (node_id[size_t(n)] != double(globalNode(n)))
+  // every rank reads the same arrays and checks them alike: an error is every rank's
+  const GlobalOrder order(_m);
+  const std::vector<double> node_id = in.reals("nodes.global_id", order.nodes());
+  const std::vector<double> element_id = in.reals("elements.global_id", order.elements());
+  for (long n = 0; n < order.nodes(); ++n)
+    if (node_id[size_t(n)] != double(n))
       throw InputError("restart file '" + in.path() + "': node numbering differs from this " +
                        "deck's (another mesh)");
+  std::string mismatch;
   for (Index e = 0; e < _m.elems.count; ++e)
-    if (element_id[size_t(e)] != double(globalElement(meshElementOfDevice(e))))
-      throw InputError("restart file '" + in.path() + "': element numbering differs from " +
-                       "this deck's (another mesh)");
-  auto load = [&](const char *name, const auto &v) {
-    const long m = long(v.size());
-    unflatten(v, in.reals(name, m));
-  };
-  eachNodeField(_m.nodes, load);
-  eachElementField(_m.elems, load);
-  load("bc.velocity_current", _m.bc.velocity_current);
+    if (element_id[size_t(order.elementRow(e))] != double(globalElement(meshElementOfDevice(e))))
+      mismatch = "restart file '" + in.path() + "': element numbering differs from this " +
+                 "deck's (another mesh)";
+  const std::string error = _m.dd ? firstErrorOfAnyRank(mismatch, _m.comm) : mismatch;
+  if (!error.empty())
+    throw InputError(error);
+  eachNodeField(_m.nodes, [&](const char *name, const auto &v) {
+    const int c = v.extent(0) ? flatWidth(v) : 0;
+    scatterRows(v, _m.nodes.count, in.reals(name, order.nodes() * c), c,
+                [&](Index n) { return order.nodeRow(n); });
+  });
+  eachElementField(_m.elems, [&](const char *name, const auto &v) {
+    const int c = v.extent(0) ? flatWidth(v) : 0;
+    scatterRows(v, _m.elems.count, in.reals(name, order.elements() * c), c,
+                [&](Index e) { return order.elementRow(e); });
+  });
+  // the values step 12 of the last cycle set, at the time it ended (the same bits)
+  updateVelocityValues(_m.bc, _time);
   if (_m.contact)
-    _m.contact->loadState(in);
+  {
+    // the ghost faces at the restart positions hold the faces of every CP of this rank
+    if (_m.dd)
+      rebuildGhostFaces();
+    _m.contact->loadState(in, _m.dd ? _m.comm : MPI_COMM_NULL, nodeSlotGlobalIds());
+    if (_m.dd && !_m.contact->searchDue(_cycle))
+      restrictGhosts();
+  }
   _gravity = gravityAt(_time);
 }
 

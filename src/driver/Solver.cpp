@@ -275,13 +275,10 @@ bool Solver::reachedEnd() const
 
 long Solver::run(const std::string &output_dir, const std::string &restart_file)
 {
-  if (_m.num_ranks > 1 && (!restart_file.empty() || _m.deck.restart_interval > 0))
-    throw InputError(std::string(restart_file.empty() ? "output.restart_interval" : "--restart") +
-                     ": restart files need a run on one rank (decomposed restarts are not "
-                     "implemented)");
   std::unique_ptr<RestartReader> restart;
   if (!restart_file.empty())
   {
+    // every rank reads the whole file and checks it alike, so they fail together
     restart = std::make_unique<RestartReader>(restart_file, restartDeckHash(_m.deck));
     loadState(*restart);
   }

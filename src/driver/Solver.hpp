@@ -60,7 +60,7 @@ public:
   /// With `restart_file` the run continues from that restart file (loadState()).
   long run(const std::string &output_dir, const std::string &restart_file = "");
   /// \brief Everything the next cycle reads from the last one (driver/Restart.cpp): one place
-  /// for the state a restart file holds. One rank only.
+  /// for the state a restart file holds, in the global numbering (any rank count reads it).
   void saveState(RestartWriter &out) const;
   /// \brief The state saveState() wrote, in place of the initial state set-up built.
   void loadState(const RestartReader &in);
@@ -155,7 +155,11 @@ private:
   void endInterruptedRun(Outputs &out);
   void jointGaugeValues(std::vector<Real> &out) const;
   void ensureNodeCapacity(Index count);
+  /// \brief Step 4's choice of the ghost faces and nodes, at this cycle's positions (collective).
+  void rebuildGhostFaces();
   void restrictGhosts();
+  /// \brief Global id of every node slot of the node Views, ghost nodes included (-1: unused).
+  std::vector<Index> nodeSlotGlobalIds() const;
   void stepExchangeContactPartials(); // 9b
   void sumSharedFaceLoads();          // in 10
   void collectiveCheck(const std::string &local_error) const;

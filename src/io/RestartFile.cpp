@@ -2,6 +2,7 @@
 
 #include "core/InputError.hpp"
 #include "io/Hdf5Util.hpp"
+#include "parallel/Mpi.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -63,15 +64,24 @@ std::string textHash(const std::string &text)
   return out;
 }
 
-RestartWriter::RestartWriter(const std::string &path, const std::string &deck_hash)
-    : _path(path), _tmp(path + ".tmp")
+RestartWriter::RestartWriter(const std::string &path, const std::string &deck_hash, MPI_Comm comm)
+    : _path(path), _tmp(path + ".tmp"), _comm(comm)
 {
-  hid_t file = -1, dxpl = -1;
-  openFile(_tmp, nullptr, file, dxpl);
-  _file = file;
-  _dxpl = dxpl;
-  writeScalarAttribute<long>(file, "format_version", kRestartFormatVersion, _tmp);
-  writeStringAttribute(file, "deck_hash", deck_hash, _tmp);
+  if (comm != MPI_COMM_NULL && mpiRank(comm) != 0)
+    return;
+  try
+  {
+    hid_t file = -1, dxpl = -1;
+    openFile(_tmp, nullptr, file, dxpl);
+    _file = file;
+    _dxpl = dxpl;
+    writeScalarAttribute<long>(file, "format_version", kRestartFormatVersion, _tmp);
+    writeStringAttribute(file, "deck_hash", deck_hash, _tmp);
+  }
+  catch (const std::runtime_error &e)
+  {
+    _error = e.what();
+  }
 }
 
 RestartWriter::~RestartWriter()
@@ -84,28 +94,59 @@ RestartWriter::~RestartWriter()
   std::filesystem::remove(_tmp, ec);
 }
 
+void RestartWriter::write(const std::string &name, const void *values, size_t count, bool real)
+{
+  // a failure is kept for commit(): the other ranks go on gathering, none is left waiting
+  if (_file < 0 || !_error.empty())
+    return;
+  try
+  {
+    if (real)
+      writeDataset(hid_t(_file), name, {hsize_t(count)}, static_cast<const double *>(values),
+                   hid_t(_dxpl), _tmp);
+    else
+      writeDataset(hid_t(_file), name, {hsize_t(count)}, static_cast<const int *>(values),
+                   hid_t(_dxpl), _tmp);
+  }
+  catch (const std::runtime_error &e)
+  {
+    _error = e.what();
+  }
+}
+
 void RestartWriter::put(const std::string &name, const std::vector<double> &values)
 {
-  writeDataset(hid_t(_file), name, {hsize_t(values.size())}, values.data(), hid_t(_dxpl), _tmp);
+  write(name, values.data(), values.size(), true);
 }
 
 void RestartWriter::put(const std::string &name, const std::vector<int> &values)
 {
-  writeDataset(hid_t(_file), name, {hsize_t(values.size())}, values.data(), hid_t(_dxpl), _tmp);
+  write(name, values.data(), values.size(), false);
 }
 
 void RestartWriter::commit()
 {
-  // a marker written last: a file cut short before it is not a complete restart file
-  writeScalarAttribute<long>(hid_t(_file), "complete", 1, _tmp);
-  hid_t file = hid_t(_file), dxpl = hid_t(_dxpl);
-  closeFile(file, dxpl, _tmp);
-  _file = _dxpl = -1;
-  std::error_code ec;
-  std::filesystem::rename(_tmp, _path, ec);
-  if (ec)
-    throw std::runtime_error("cannot write '" + _path + "': " + ec.message() +
-                             " (renaming the complete .tmp file)");
+  if (_file >= 0 && _error.empty())
+    try
+    {
+      // a marker written last: a file cut short before it is not a complete restart file
+      writeScalarAttribute<long>(hid_t(_file), "complete", 1, _tmp);
+      hid_t file = hid_t(_file), dxpl = hid_t(_dxpl);
+      _file = _dxpl = -1;
+      closeFile(file, dxpl, _tmp);
+      std::error_code ec;
+      std::filesystem::rename(_tmp, _path, ec);
+      if (ec)
+        _error =
+            "cannot write '" + _path + "': " + ec.message() + " (renaming the complete .tmp file)";
+    }
+    catch (const std::runtime_error &e)
+    {
+      _error = e.what();
+    }
+  const std::string error = _comm != MPI_COMM_NULL ? firstErrorOfAnyRank(_error, _comm) : _error;
+  if (!error.empty())
+    throw std::runtime_error(error);
 }
 
 RestartReader::RestartReader(const std::string &path, const std::string &deck_hash) : _path(path)

@@ -5,7 +5,11 @@
 /// to `<path>` once it is complete and closed, so a crash never leaves a file under the final
 /// name that a restart would take for a whole one. The reader throws an InputError of one line
 /// naming the file and the cause (another deck, another version, a truncated or corrupt file).
-/// Host-only; one rank writes and reads.
+/// Host-only. A decomposed run gathers its arrays to rank 0 in global order, which alone writes
+/// the file (the writer is collective); every rank reads the whole file and takes its part, so
+/// a file read at any rank count gives every rank the same checks and the same errors.
+#include <mpi.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,22 +18,28 @@ namespace scpdyn
 {
 
 /// \brief The version of the layout Solver::saveState() writes; raise it when that changes.
-constexpr long kRestartFormatVersion = 2;
+constexpr long kRestartFormatVersion = 3;
 
 class RestartWriter
 {
 public:
-  RestartWriter(const std::string &path, const std::string &deck_hash);
+  /// \brief Collective over `comm` (MPI_COMM_NULL: one rank): rank 0 opens the file, put() on
+  /// the other ranks does nothing.
+  RestartWriter(const std::string &path, const std::string &deck_hash,
+                MPI_Comm comm = MPI_COMM_NULL);
   ~RestartWriter();
   RestartWriter(const RestartWriter &) = delete;
   RestartWriter &operator=(const RestartWriter &) = delete;
   void put(const std::string &name, const std::vector<double> &values);
   void put(const std::string &name, const std::vector<int> &values);
-  /// \brief Closes the .tmp file and renames it to the final path.
+  /// \brief Closes the .tmp file and renames it to the final path (collective: a failure of
+  /// rank 0's, here or in a put(), is thrown on every rank).
   void commit();
 
 private:
-  std::string _path, _tmp;
+  void write(const std::string &name, const void *values, size_t count, bool real);
+  std::string _path, _tmp, _error;
+  MPI_Comm _comm = MPI_COMM_NULL;
   long long _file = -1, _dxpl = -1;
 };
 

@@ -176,6 +176,31 @@ inline std::string firstErrorOfAnyRank(const std::string &local, MPI_Comm comm =
   return message;
 }
 
+/// \brief The `local` vectors of all ranks concatenated in rank order on rank 0 (empty on the
+/// others), with each rank's length in `counts` (rank 0). MPI_COMM_NULL: `local` itself.
+inline std::vector<double> gatherToRoot(const std::vector<double> &local, MPI_Comm comm,
+                                        std::vector<int> *counts = nullptr)
+{
+  if (comm == MPI_COMM_NULL)
+  {
+    if (counts)
+      *counts = {int(local.size())};
+    return local;
+  }
+  const int rank = mpiRank(comm), size = mpiSize(comm);
+  int mine = int(local.size());
+  std::vector<int> n(rank == 0 ? size_t(size) : 0), displs(n.size(), 0);
+  MPI_Gather(&mine, 1, MPI_INT, n.data(), 1, MPI_INT, 0, comm);
+  for (size_t r = 1; r < n.size(); ++r)
+    displs[r] = displs[r - 1] + n[r - 1];
+  std::vector<double> all(n.empty() ? 0 : size_t(displs.back() + n.back()));
+  MPI_Gatherv(local.data(), mine, MPI_DOUBLE, all.data(), n.data(), displs.data(), MPI_DOUBLE, 0,
+              comm);
+  if (counts)
+    *counts = n;
+  return all;
+}
+
 /// \brief Element-wise global sum of `n` values in ascending rank order (allReduceSumMin()).
 inline void allReduceSum(Real *values, int n, MPI_Comm comm = MPI_COMM_WORLD)
 {
