@@ -14,7 +14,7 @@ namespace scpdyn
 {
 
 /// \brief The version of the layout Solver::saveState() writes; raise it when that changes.
-constexpr long kRestartFormatVersion = 2;
+constexpr long kRestartFormatVersion = 3;
 
 class RestartWriter
 {
