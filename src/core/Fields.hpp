@@ -26,6 +26,9 @@ struct NodeFields
   Index count = 0;
 };
 
+/// \brief ElementFields::eroded of an element that step 6 of this cycle eroded.
+constexpr std::uint8_t kErodingNow = 2;
+
 /// \brief Element fields (every element type; connectivity padded with -1).
 struct ElementFields
 {
@@ -42,6 +45,9 @@ struct ElementFields
   RealView hourglass_energy; ///< accumulated hourglass work [J]
   HistoryView history;
   HourglassView hourglass; ///< stiffness-form resistances
+  /// 1 if the element is eroded (docs/theory.md 11.6): it contributes no force, stress update
+  /// or time-step limit; kErodingNow (2) while step 6 erodes it (ErosionStep books it)
+  DeviceView<std::uint8_t *> eroded;
   /// 1 at e if the hexes e .. e + kElementLanes - 1 are a row pack (markRowPacks()), else 0
   DeviceView<std::uint8_t *> row_pack;
   Index count = 0;

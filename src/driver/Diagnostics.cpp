@@ -104,13 +104,15 @@ EnergyReport Solver::energies() const
 {
   EnergyReport r;
   auto mass = _m.elems.mass, energy = _m.elems.energy, hg = _m.elems.hourglass_energy;
+  auto eroded = _m.elems.eroded; // an eroded element's energy is in _eroded_energy
   Real internal = 0, hourglass = 0;
   Kokkos::parallel_reduce(
       "scpdyn::output::internalEnergy", Kokkos::RangePolicy<ExecSpace>(0, _m.elems.count),
-      KOKKOS_LAMBDA(const Index e, Real &s) { s += mass(e) * energy(e); }, internal);
+      KOKKOS_LAMBDA(const Index e, Real &s) { s += eroded(e) ? 0 : mass(e) * energy(e); },
+      internal);
   Kokkos::parallel_reduce(
       "scpdyn::output::hourglassEnergy", Kokkos::RangePolicy<ExecSpace>(0, _m.elems.count),
-      KOKKOS_LAMBDA(const Index e, Real &s) { s += hg(e); }, hourglass);
+      KOKKOS_LAMBDA(const Index e, Real &s) { s += eroded(e) ? 0 : hg(e); }, hourglass);
   if (_m.contact) // work done on the joints = stored + dissipated (closes the balance)
   {
     r.contact = _m.contact->energy();
@@ -132,7 +134,9 @@ EnergyReport Solver::energies() const
     r.momentum[i] = _last_sums.momentum[i];
   r.external_work = _external_work;
   // the leapfrog conserves 1/2 m v^n.v^{n+1} + IE(x^{n+1/2}) (verification.md T1)
-  const Real total = _kinetic_mid + internal + hourglass + r.contact;
+  r.eroded = _eroded_energy;
+  r.eroded_elements = _eroded_elements;
+  const Real total = _kinetic_mid + internal + hourglass + r.contact + _eroded_energy;
   const Real scale = std::max({_energy_scale, std::abs(_initial_energy) + std::abs(_external_work),
                                std::numeric_limits<Real>::min()});
   r.balance_error = (total - _initial_energy - _external_work) / scale;

@@ -364,6 +364,8 @@ void Outputs::openRootWriters()
                                    "contact_dissipation"};
   if (_has_sleepy)
     history.push_back("failed_contacts");
+  history.push_back("eroded_energy");
+  history.push_back("eroded_elements");
   _history = std::make_unique<CsvWriter>(_dir + "/history.csv", history, _continued);
   std::vector<std::string> columns{"time"};
   for (const auto &g : _solver.gauges())
@@ -458,7 +460,8 @@ void Outputs::writeFrame()
   auto energy = Kokkos::create_mirror_view_and_copy(HostSpace(), el.energy);
   auto eps = Kokkos::create_mirror_view_and_copy(HostSpace(), el.plastic_strain);
   auto part = Kokkos::create_mirror_view_and_copy(HostSpace(), el.part);
-  std::vector<double> s6(ne * 6), p(ne), rho(ne), e(ne), ep(ne), pt(ne);
+  auto eroded = Kokkos::create_mirror_view_and_copy(HostSpace(), el.eroded);
+  std::vector<double> s6(ne * 6), p(ne), rho(ne), e(ne), ep(ne), pt(ne), er(ne);
   for (size_t k = 0; k < ne; ++k)
   {
     for (int j = 0; j < 6; ++j)
@@ -468,6 +471,7 @@ void Outputs::writeFrame()
     e[k] = energy(k);
     ep[k] = eps(k);
     pt[k] = part(k);
+    er[k] = eroded(k) != 0 ? 1 : 0;
   }
   // named material history slots (damage, tensile_strength, burn_fraction, ...): one cell
   // field per name, zero in elements whose material does not have it
@@ -500,6 +504,8 @@ void Outputs::writeFrame()
                     {"specific_internal_energy", e},
                     {"plastic_strain", ep},
                     {"part", pt}};
+  if (_solver.elementControls().erosion)
+    f.cell_scalars.push_back({"eroded", er});
   for (auto &kv : named)
     f.cell_scalars.push_back({kv.first, std::move(kv.second)});
   if (_fields)
@@ -568,6 +574,8 @@ void Outputs::writeRows()
                               r.contact_dissipation};
   if (_has_sleepy)
     history.push_back(failed);
+  history.push_back(r.eroded);
+  history.push_back(double(r.eroded_elements));
   _history->row(history);
   if (_gauges)
     _gauges->row(row);

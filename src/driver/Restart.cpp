@@ -64,6 +64,7 @@ void eachElementField(const ElementFields &e, Fn &&fn)
   fn("elements.hourglass_energy", e.hourglass_energy);
   fn("elements.history", e.history);
   fn("elements.hourglass", e.hourglass);
+  fn("elements.eroded", e.eroded);
 }
 } // namespace
 
@@ -157,11 +158,12 @@ void Solver::saveState(RestartWriter &out) const
 {
   // the scalars are global (the reductions of step 12 give every rank the same), rank 0's
   out.put("solver.scalars",
-          std::vector<double>{
-              _time, _dt, _dt_next, double(_cycle), _external_work, _kinetic_mid, _initial_energy,
-              _energy_scale, _limits.element, _limits.contact, _forces_zeroed ? 1.0 : 0.0,
-              _last_sums.kinetic, _last_sums.kinetic_mid, _last_sums.external_work,
-              _last_sums.momentum[0], _last_sums.momentum[1], _last_sums.momentum[2]});
+          std::vector<double>{_time, _dt, _dt_next, double(_cycle), _external_work, _kinetic_mid,
+                              _initial_energy, _energy_scale, _limits.element, _limits.contact,
+                              _forces_zeroed ? 1.0 : 0.0, _last_sums.kinetic,
+                              _last_sums.kinetic_mid, _last_sums.external_work,
+                              _last_sums.momentum[0], _last_sums.momentum[1],
+                              _last_sums.momentum[2], _eroded_energy, double(_eroded_elements)});
   putStep(out, "solver.smallest_step", _smallest_step);
   putStep(out, "solver.next_step", _next_step);
   putStep(out, "solver.first_step", _first_step);
@@ -189,7 +191,7 @@ void Solver::saveState(RestartWriter &out) const
 
 void Solver::loadState(const RestartReader &in)
 {
-  const std::vector<double> s = in.reals("solver.scalars", 17);
+  const std::vector<double> s = in.reals("solver.scalars", 19);
   _time = s[0];
   _dt = s[1];
   _dt_next = s[2];
@@ -206,6 +208,8 @@ void Solver::loadState(const RestartReader &in)
   _last_sums.external_work = s[13];
   for (int i = 0; i < 3; ++i)
     _last_sums.momentum[i] = s[14 + size_t(i)];
+  _eroded_energy = s[17];
+  _eroded_elements = long(s[18]);
   _smallest_step = getStep(in, "solver.smallest_step");
   _next_step = getStep(in, "solver.next_step");
   _first_step = getStep(in, "solver.first_step");

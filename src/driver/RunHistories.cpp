@@ -169,9 +169,12 @@ void RunHistories::partSums(std::vector<double> &out) const
   const auto emass = onHost(el.mass), energy = onHost(el.energy);
   const auto hourglass = onHost(el.hourglass_energy);
   const auto part = onHost(el.part);
+  const auto eroded = onHost(el.eroded);
   const std::vector<int> &spec = _solver.model().part_spec;
   for (Index e = 0; e < el.count; ++e)
   {
+    if (eroded(e) != 0) // its energy is booked as eroded (history.csv), not the part's
+      continue;
     double *o = &out[kPartValues * size_t(spec[size_t(part(e))])];
     o[1] += emass(e) * energy(e);
     o[2] += hourglass(e);

@@ -151,6 +151,8 @@ void Solver::stepElementSolvers()
                                                    _m.materials, _m.corners, _m.sweep);
   if (controls.gather)
     gatherCornerForces(_m.nodes, _m.corners);
+  if (controls.erosion)
+    stepErodeElements();
   std::string error;
   if (!r.ok())
   {
@@ -172,7 +174,8 @@ void Solver::stepElementSolvers()
     error = os.str();
   }
   collectiveCheck(error); // every rank stops before the shared-node exchange
-  _limits.element = r.dt;
+  if (!_all_eroded)       // else the last element limit stays: the run ends with this cycle
+    _limits.element = r.dt;
   if (_check_sweep)
     snapshotEarlyNodes(_m.nodes, _early_snapshot);
 }
@@ -270,7 +273,8 @@ void Solver::checkEarlyNodes() const
 
 bool Solver::reachedEnd() const
 {
-  return !(_time < _m.deck.end_time && (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles));
+  return _all_eroded ||
+         !(_time < _m.deck.end_time && (_m.deck.max_cycles < 0 || _cycle < _m.deck.max_cycles));
 }
 
 long Solver::run(const std::string &output_dir, const std::string &restart_file)

@@ -41,6 +41,8 @@ struct EnergyReport
   Real balance_error = 0; ///< (E - E0 - W_ext) / reference, on the leapfrog's conserved energy
   Real momentum[3] = {0, 0, 0};
   Real contact_dissipation = 0; ///< part of `contact` dissipated (contact - stored)
+  Real eroded = 0;              ///< internal + hourglass energy eroded elements held [J]
+  long eroded_elements = 0;     ///< elements eroded so far, over all ranks
 };
 
 class Solver
@@ -97,6 +99,8 @@ public:
     return c;
   }
   long cycles() const { return _cycle; }
+  /// \brief Every element is eroded: the run ended (docs/theory.md 11.6).
+  bool allEroded() const { return _all_eroded; }
   const Deck &deck() const { return _m.deck; }
   /// \brief This rank's mesh (the whole mesh on one rank).
   const HostMesh &mesh() const { return _m.mesh; }
@@ -174,6 +178,7 @@ private:
   void stepExchangeFaceConnectivity(); // 4
   void stepZeroForces();               // 5
   void stepElementSolvers();           // 6
+  void stepErodeElements();            // 6b: book and announce the elements step 6 eroded
   void stepExchangeSharedNodeForces(); // 7
   void stepExchangeGhostFaceData();    // 8
   void stepContactForces();            // 9
@@ -202,7 +207,10 @@ private:
   Real _external_work = 0;
   Real _kinetic_mid = 0; ///< 1/2 sum m v^n.v^{n+1} of the last step
   Real _initial_energy = 0;
-  Real _energy_scale = 0; ///< largest |energy| seen, the balance error's reference
+  Real _energy_scale = 0;    ///< largest |energy| seen, the balance error's reference
+  Real _eroded_energy = 0;   ///< internal + hourglass energy of the eroded elements [J]
+  long _eroded_elements = 0; ///< elements eroded so far, over all ranks
+  bool _all_eroded = false;  ///< no element is left: the run ends (docs/theory.md 11.6)
   NodeSums _last_sums;
   StepTimers _timers;
   double _cycle_wall = 0;

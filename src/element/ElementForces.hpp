@@ -23,7 +23,8 @@ struct ElementControls
   Real hourglass_coefficient = 0.05;
   Real q_linear = 0.06;
   Real q_quadratic = 1.5;
-  bool gather = false; ///< chunked, deterministic assembly (NodeCorners) instead of atomics
+  bool gather = false;  ///< chunked, deterministic assembly (NodeCorners) instead of atomics
+  bool erosion = false; ///< a material erodes: skip eroded elements (ElementFields::eroded)
 };
 
 /// \brief First element of chunk k of the `chunks` chunks of group g (k = chunks: its end).

@@ -5,6 +5,7 @@
 /// of kElementLanes hexes, loading and storing the element state and scattering the forces.
 #include "element/ElementSolver.hpp"
 #include "element/ElementForces.hpp"
+#include "material/Erosion.hpp"
 
 namespace scpdyn
 {
@@ -40,6 +41,7 @@ struct ElementKernel
   SymTensorView e_stress;
   HistoryView e_hist;
   HourglassView e_hgq;
+  DeviceView<std::uint8_t *> e_eroded;
   DeviceView<MaterialParams *> materials;
   ElementControls ctl;
   Scatter scatter;
@@ -73,6 +75,12 @@ struct ElementKernel
   KOKKOS_INLINE_FUNCTION void finish(const Index e, const Real *history, const ElementState &s,
                                      const ElementResult &r, Real &local_min) const
   {
+    if (ctl.erosion && erodesInStep(e, history, s, r.stable_dt))
+    {
+      e_eroded(e) = kErodingNow; // its last state, and no force, no step of this cycle
+      clearCornerSlots(e);
+      return;
+    }
     if (!(r.stable_dt > 0))
     {
       const Real flag = -Real(e + 1);
@@ -94,6 +102,30 @@ struct ElementKernel
       e_hgq(e, k) = s.hourglass[k];
     scatterForces(e, r.force);
     local_min = r.stable_dt < local_min ? r.stable_dt : local_min;
+  }
+
+  /// Whether element e erodes instead of finishing its step: its material erodes and its
+  /// updated state s passed a limit, or it inverted (docs/theory.md 11.6). A non-finite step
+  /// is left to stop the run.
+  KOKKOS_INLINE_FUNCTION bool erodesInStep(const Index e, const Real *history,
+                                           const ElementState &s, const Real stable_dt) const
+  {
+    const MaterialParams &m = materials(mat_id(e));
+    if (!m.erosion.active || stable_dt != stable_dt)
+      return false;
+    const Real damage = history ? erosionDamage(m, history) : Real(0);
+    return erosionLimitPassed(m.erosion, s.plastic_strain, damage,
+                              volumetricStrain(m, s.mass, s.volume), stable_dt);
+  }
+
+  /// An element that scatters nothing (eroded): its corner slots, which the gather sums every
+  /// cycle, must not keep its last forces.
+  KOKKOS_INLINE_FUNCTION void clearCornerSlots(const Index e) const
+  {
+    if (scatter != Scatter::Corners)
+      return;
+    const Real zero[N][3] = {};
+    scatterForces(e, zero);
   }
 
   /// Element e's nodal forces to f_int (atomic or plain adds) or to its corner slots.
@@ -129,6 +161,11 @@ struct ElementKernel
 
   KOKKOS_INLINE_FUNCTION void one(const Index e, Real &local_min) const
   {
+    if (ctl.erosion && e_eroded(e) != 0)
+    {
+      clearCornerSlots(e);
+      return;
+    }
     Real x[N][3], v[N][3];
     for (int a = 0; a < N; ++a)
     {
@@ -244,6 +281,12 @@ struct ElementKernel
   {
     constexpr int W = kElementLanes;
     using P = LanePack;
+    if (ctl.erosion) // eroded lanes and eroding ones: the scalar path skips and flags them
+    {
+      for (Index e = first; e < first + count; ++e)
+        one(e, local_min);
+      return;
+    }
     Index el[W];
     for (int l = 0; l < W; ++l)
       el[l] = first + (l < count ? l : count - 1);
@@ -398,6 +441,7 @@ ElementKernel<T, Axi> makeElementKernel(const ElementControls &ctl, Scatter scat
   k.e_stress = el.stress;
   k.e_hist = el.history;
   k.e_hgq = el.hourglass;
+  k.e_eroded = el.eroded;
   k.materials = materials;
   k.ctl = ctl;
   k.scatter = scatter;

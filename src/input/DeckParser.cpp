@@ -243,6 +243,15 @@ std::map<std::string, int> parseMaterials(const YamlMap &root, Deck &deck)
             spec.values["eos." + ee.key] = ev.real();
         }
       }
+      else if (e.key == "erosion")
+      {
+        const YamlMap erosion = v.openMap();
+        for (const auto &ee : erosion.entries())
+        {
+          spec.lines["erosion." + ee.key] = ee.line;
+          spec.values["erosion." + ee.key] = erosion[ee.key].real();
+        }
+      }
       else
         spec.values[e.key] = v.real();
     }

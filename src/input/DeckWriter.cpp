@@ -112,8 +112,22 @@ void writeMaterial(YAML::Emitter &out, const MaterialSpec &m)
     if (kv.first.rfind("eos.", 0) == 0)
       real(out << YAML::Key << kv.first.substr(4) << YAML::Value, kv.second);
   out << YAML::EndMap;
+  const auto prefixed = [](const std::string &key, const char *prefix) {
+    return key.rfind(prefix, 0) == 0;
+  };
+  bool erosion = false;
   for (const auto &kv : m.values)
-    if (kv.first.rfind("eos.", 0) != 0)
+    erosion = erosion || prefixed(kv.first, "erosion.");
+  if (erosion)
+  {
+    out << YAML::Key << "erosion" << YAML::Value << YAML::BeginMap;
+    for (const auto &kv : m.values)
+      if (prefixed(kv.first, "erosion."))
+        real(out << YAML::Key << kv.first.substr(8) << YAML::Value, kv.second);
+    out << YAML::EndMap;
+  }
+  for (const auto &kv : m.values)
+    if (!prefixed(kv.first, "eos.") && !prefixed(kv.first, "erosion."))
       real(out << YAML::Key << kv.first << YAML::Value, kv.second);
   out << YAML::EndMap;
 }

@@ -297,6 +297,29 @@ JwlCjState validateHighExplosive(const MaterialSpec &spec, const MaterialParams 
   return cj;
 }
 
+// the erosion limits (docs/input.md): each one a measure the model has, in its range
+void validateErosionKeys(const MaterialSpec &spec)
+{
+  auto check = [&](const char *key, bool ok, const char *range) {
+    if (has(spec, key) && !ok)
+      fail(spec, key,
+           std::string("must be ") + range + " (got " + formatReal(get(spec, key, 0)) + ")");
+  };
+  check("erosion.plastic_strain", get(spec, "erosion.plastic_strain", 0) > 0, "> 0");
+  const double d = get(spec, "erosion.damage", 0);
+  check("erosion.damage", d > 0 && d <= 1, "in (0, 1]");
+  const double vmin = get(spec, "erosion.volumetric_strain_min", 0);
+  check("erosion.volumetric_strain_min", vmin > -1 && vmin < 0, "in (-1, 0)");
+  check("erosion.volumetric_strain_max", get(spec, "erosion.volumetric_strain_max", 0) > 0, "> 0");
+  check("erosion.time_step", get(spec, "erosion.time_step", 0) > 0, "> 0 s");
+  const bool plastic = spec.model == "elastic_plastic" || spec.model == "johnson_cook" ||
+                       spec.model == "geomaterial";
+  if (has(spec, "erosion.plastic_strain") && !plastic)
+    fail(spec, "erosion.plastic_strain", "model '" + spec.model + "' has no plastic strain");
+  if (has(spec, "erosion.damage") && spec.model != "geomaterial")
+    fail(spec, "erosion.damage", "only the geomaterial has damage (model '" + spec.model + "')");
+}
+
 // everything that needs no cross-key physics: names, combinations, presence, finiteness
 void validateKeys(const MaterialSpec &spec)
 {
@@ -315,7 +338,9 @@ void validateKeys(const MaterialSpec &spec)
   if (spec.model == "geomaterial" && spec.eos != "linear")
     fail(spec, "eos.type", "the geomaterial has its own compaction EOS; use eos linear");
 
-  std::set<std::string> allowed;
+  std::set<std::string> allowed = {"erosion.plastic_strain", "erosion.damage",
+                                   "erosion.volumetric_strain_min", "erosion.volumetric_strain_max",
+                                   "erosion.time_step"};
   for (const auto *rules : {&modelKeys(spec.model), &eosKeys(spec.eos)})
     for (const auto &r : *rules)
     {
@@ -333,6 +358,7 @@ void validateKeys(const MaterialSpec &spec)
   }
   if (get(spec, "density", 0) <= 0)
     fail(spec, "density", "must be > 0 (got " + formatReal(get(spec, "density", 0)) + ")");
+  validateErosionKeys(spec);
   if (spec.model != "high_explosive")
     validateElasticKeys(spec);
   if (spec.model == "elastic_plastic")
@@ -386,6 +412,14 @@ MaterialParams convert(const MaterialSpec &spec)
     // the EOS sets the bulk response: K0 = rho0 c0^2 (used for time-step estimates)
     p.bulk = p.density * p.mg_c0 * p.mg_c0;
   }
+  ErosionLimits &er = p.erosion;
+  er.plastic_strain = get(spec, "erosion.plastic_strain", 0);
+  er.damage = get(spec, "erosion.damage", 0);
+  er.volumetric_strain_min = get(spec, "erosion.volumetric_strain_min", 0);
+  er.volumetric_strain_max = get(spec, "erosion.volumetric_strain_max", 0);
+  er.time_step = get(spec, "erosion.time_step", 0);
+  er.active = er.plastic_strain > 0 || er.damage > 0 || er.volumetric_strain_min < 0 ||
+              er.volumetric_strain_max > 0 || er.time_step > 0;
   Real *m = p.model_params;
   auto set = [&](int slot, const char *key) { m[slot] = get(spec, key, 0); };
   switch (p.model)

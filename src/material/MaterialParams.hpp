@@ -25,6 +25,19 @@ enum class EosModel : int
   Jwl = 2           ///< Jones-Wilkins-Lee detonation products (HighExplosive only)
 };
 
+/// \brief Element erosion limits of a material (docs/input.md `materials[].erosion`, docs/theory.md
+/// 11.6); 0 = that limit is off. An element of the material erodes once one limit is passed
+/// (material/Erosion.hpp).
+struct ErosionLimits
+{
+  bool active = false;            ///< any limit set: the material erodes (also when inverted)
+  Real plastic_strain = 0;        ///< equivalent plastic strain at erosion [-]
+  Real damage = 0;                ///< geomaterial damage D at erosion [-]
+  Real volumetric_strain_min = 0; ///< V / V0 - 1 below which the element erodes (< 0) [-]
+  Real volumetric_strain_max = 0; ///< V / V0 - 1 above which the element erodes (> 0) [-]
+  Real time_step = 0;             ///< stable time step below which the element erodes [s]
+};
+
 constexpr int kModelParams = 32; ///< model-specific parameter slots (Johnson-Cook, JWL, cap...)
 
 struct MaterialParams
@@ -38,6 +51,7 @@ struct MaterialParams
   Real hardening_modulus = 0; ///< plastic modulus H = d sigma_y / d eps_p [Pa]
   Real mg_c0 = 0, mg_s = 0, mg_gamma0 = 0, mg_a = 0; ///< Mie-Gruneisen
   Real model_params[kModelParams] = {};              ///< layout owned by each later model's header
+  ErosionLimits erosion;
 };
 
 /// \brief P-wave (uniaxial-strain) modulus K + 4G/3 [Pa]: rho c^2 of the elastic sound speed.

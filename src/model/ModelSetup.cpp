@@ -327,6 +327,7 @@ void ModelSetup::setupFields()
   _m.elems.hourglass_energy = RealView("hourglass_energy", ne);
   _m.elems.history = HistoryView("history", ne);
   _m.elems.hourglass = HourglassView("hourglass", ne);
+  _m.elems.eroded = DeviceView<std::uint8_t *>("eroded", ne);
 
   auto h_x0 = Kokkos::create_mirror_view(_m.nodes.x0);
   auto h_mass = Kokkos::create_mirror_view(_m.nodes.mass);
@@ -704,6 +705,8 @@ void ModelSetup::setupInitialState()
   _m.controls.q_linear = _m.deck.bulk_viscosity_linear;
   _m.controls.q_quadratic = _m.deck.bulk_viscosity_quadratic;
   _m.controls.gather = cornerGather(_m.deck);
+  for (const MaterialParams &m : _m.materials_host)
+    _m.controls.erosion = _m.controls.erosion || m.erosion.active;
 
   const Real dt_elem =
       initialElementTimeStep(_m.groups, _m.deck.geometry, _m.nodes, _m.elems, _m.materials);

@@ -367,3 +367,7 @@ TEST(RestartFile, SigtermLeavesAFileThatContinuesTheRun)
 }
 
 } // namespace
+
+// a restart after the neck eroded (at a quarter of the run): the eroded flags and the eroded
+// energy come back, and the run goes on bit for bit
+INSTANTIATE_TEST_SUITE_P(ErodingDeck, RestartBitwise, ::testing::Values("necked_bar_2d"));
