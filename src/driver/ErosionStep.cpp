@@ -62,8 +62,8 @@ void Solver::stepErodeElements()
       offsets[size_t(r) + 1] = offsets[size_t(r)] + counts[size_t(r)];
     std::vector<Index> all_ids(size_t(offsets.back()));
     std::vector<Real> all_held(size_t(offsets.back()));
-    MPI_Allgatherv(ids.data(), n, MPI_INT, all_ids.data(), counts.data(), offsets.data(),
-                   MPI_INT, comm);
+    MPI_Allgatherv(ids.data(), n, MPI_INT, all_ids.data(), counts.data(), offsets.data(), MPI_INT,
+                   comm);
     MPI_Allgatherv(held.data(), n, MPI_DOUBLE, all_held.data(), counts.data(), offsets.data(),
                    MPI_DOUBLE, comm);
     ids = std::move(all_ids);

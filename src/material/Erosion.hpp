@@ -19,7 +19,7 @@ KOKKOS_INLINE_FUNCTION Real volumetricStrain(const MaterialParams &m, Real mass,
 /// fell below the floor (stable_dt <= 0, an inverted element, always erodes once any limit
 /// is set). Limits that are 0 are off.
 KOKKOS_INLINE_FUNCTION bool erosionLimitPassed(const ErosionLimits &l, Real plastic_strain,
-                                              Real damage, Real volumetric_strain, Real stable_dt)
+                                               Real damage, Real volumetric_strain, Real stable_dt)
 {
   if (!l.active)
     return false;
