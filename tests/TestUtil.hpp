@@ -4,12 +4,16 @@
 #include "driver/Solver.hpp"
 #include "input/Deck.hpp"
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <utility>
 #include <vector>
 
 namespace scpdyn::test
@@ -91,6 +95,35 @@ std::string inputErrorOf(F &&f)
 inline Deck deckFromText(const std::string &yaml, const std::string &name)
 {
   return parseDeckString(yaml, name + ".yaml");
+}
+
+/// \brief The lines of a text file (none if it cannot be read).
+inline std::vector<std::string> lines(const std::string &path)
+{
+  std::vector<std::string> out;
+  std::ifstream in(path);
+  for (std::string l; std::getline(in, l);)
+    out.push_back(l);
+  return out;
+}
+
+/// \brief The restart files (restart_<cycle>.h5) in `dir`, by ascending cycle.
+inline std::vector<std::string> restartFiles(const std::string &dir)
+{
+  std::vector<std::pair<long, std::string>> found;
+  const std::regex name(R"(restart_([0-9]+)\.h5)");
+  for (const auto &e : std::filesystem::directory_iterator(dir))
+  {
+    std::smatch m;
+    const std::string f = e.path().filename().string();
+    if (std::regex_match(f, m, name))
+      found.push_back({std::stol(m[1].str()), e.path().string()});
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<std::string> out;
+  for (const auto &f : found)
+    out.push_back(f.second);
+  return out;
 }
 
 } // namespace scpdyn::test

@@ -50,34 +50,6 @@ std::string deckWithRestarts(const std::string &name, const std::string &dir)
   return path;
 }
 
-/// The restart files in `dir`, by ascending cycle.
-std::vector<std::string> restartFiles(const std::string &dir)
-{
-  std::vector<std::pair<long, std::string>> found;
-  const std::regex name(R"(restart_([0-9]+)\.h5)");
-  for (const auto &e : fs::directory_iterator(dir))
-  {
-    std::smatch m;
-    const std::string f = e.path().filename().string();
-    if (std::regex_match(f, m, name))
-      found.push_back({std::stol(m[1].str()), e.path().string()});
-  }
-  std::sort(found.begin(), found.end());
-  std::vector<std::string> out;
-  for (const auto &f : found)
-    out.push_back(f.second);
-  return out;
-}
-
-std::vector<std::string> lines(const std::string &path)
-{
-  std::vector<std::string> out;
-  std::ifstream in(path);
-  for (std::string l; std::getline(in, l);)
-    out.push_back(l);
-  return out;
-}
-
 /// The cycle of restart file `path` (restart_<cycle>.h5).
 long cycleOf(const std::string &path)
 {

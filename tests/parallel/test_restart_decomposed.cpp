@@ -83,29 +83,11 @@ void runOn(int ranks, const std::string &yaml, const std::string &dir,
   MPI_Barrier(MPI_COMM_WORLD);
 }
 
-/// The restart file of `dir` at the smallest cycle (the half-time one).
+/// The restart file of `dir` at the smallest cycle (the half-time one); empty if none.
 std::string firstRestartFile(const std::string &dir)
 {
-  std::string best;
-  long cycle = -1;
-  const std::regex name(R"(restart_([0-9]+)\.h5)");
-  for (const auto &e : fs::directory_iterator(dir))
-  {
-    std::smatch m;
-    const std::string f = e.path().filename().string();
-    if (std::regex_match(f, m, name) && (cycle < 0 || std::stol(m[1].str()) < cycle))
-      cycle = std::stol(m[1].str()), best = e.path().string();
-  }
-  return best;
-}
-
-std::vector<std::string> lines(const std::string &path)
-{
-  std::vector<std::string> out;
-  std::ifstream in(path);
-  for (std::string l; std::getline(in, l);)
-    out.push_back(l);
-  return out;
+  const std::vector<std::string> files = restartFiles(dir);
+  return files.empty() ? std::string() : files.front();
 }
 
 /// The columns judged on one scale: a gauge's quantities, a pair's forces, a part's energies,
