@@ -81,8 +81,11 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   // work above, 1/2 (V1 - V2)^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}) (the previous force from
   // the histories at the start of step 9; the weights of this cycle)
   if (_cp_work.extent(0) < size_t(cp.count))
+  {
     _cp_work = RealView("cp_work", size_t(cp.count));
-  auto cp_work = _cp_work;
+    _cp_carried = RealView("cp_carried", size_t(cp.count));
+  }
+  auto cp_work = _cp_work, cp_carried = _cp_carried;
   auto before = _state_before;
   const Real dt_prev = _dt_prev;
   Kokkos::parallel_for(
@@ -90,9 +93,10 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
       KOKKOS_LAMBDA(const Index p) {
         const JointParams &P = cp.params(p);
         cp_work(p) = 0;
+        cp_carried(p) = 0;
         if (isTie(P, cp.state(p)))
           return; // a tie does no work: its booked work is round-off and lag of either sign
-        Real V1[3], V2[3], w = 0;
+        Real V1[3], V2[3], w = 0, carried = 0;
         cpVelocities(F, cp, p, P.velocity, v, V1, V2);
         const CpState &o = before(p);
         // a sleepy CP that fails this cycle: its last impulse was a tie's, which does no work
@@ -101,8 +105,10 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
         {
           const Real I_old = booked * (o.Fn * o.n_old[d] + o.Fs[d]) * dt_prev;
           w += 0.5 * (V1[d] - V2[d]) * (cp.force(p, d) * dt + I_old);
+          carried += 0.25 * (V1[d] + V2[d]) * (cp.force(p, d) * dt + I_old);
         }
         cp_work(p) = w;
+        cp_carried(p) = carried < 0 ? -carried : carried;
       });
   Real joint_work = 0, gross = 0;
   Kokkos::parallel_reduce(
@@ -119,9 +125,10 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
           sum += cp_work(p) < 0 ? -cp_work(p) : cp_work(p);
       },
       gross);
-  // slide lines: their net work, and the kinetic energy of the contact nodes, the scale of the
+  // slide lines: their net work; the work they carry from one body to the other, the scale of
+  // the solve's round-off; and the kinetic energy of the contact nodes, the scale of the
   // leapfrog lag of either sign that persistent contact books (a quasi-static patch: 1e-20 J)
-  Real slide_work = 0, ke_contact = 0;
+  Real slide_work = 0, slide_carried = 0, ke_contact = 0;
   if (slideLinesLive() || _has_sleepy)
   {
     Kokkos::parallel_reduce(
@@ -131,6 +138,13 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
             sum += cp_work(p);
         },
         slide_work);
+    Kokkos::parallel_reduce(
+        "scpdyn::contact::slideCarriedSum", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+        KOKKOS_LAMBDA(const Index p, Real &sum) {
+          if (ownsPlane(F, cp, p) && isSlide(cp.params(p), cp.state(p)))
+            sum += cp_carried(p);
+        },
+        slide_carried);
     auto mass = nodes.mass;
     Kokkos::parallel_reduce(
         "scpdyn::contact::contactNodeEnergy", Kokkos::RangePolicy<ExecSpace>(0, nused),
@@ -142,17 +156,19 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
         ke_contact);
   }
   // the energy test is on the whole model (decomposed: the sums over the ranks)
-  Real sums[6] = {joint_work, gross, stored, Real(cp.count), slide_work, ke_contact};
+  Real sums[7] = {joint_work, gross, stored, Real(cp.count), slide_work, ke_contact, slide_carried};
   if (_comm.sum)
-    _comm.sum(sums, 6);
+    _comm.sum(sums, 7);
   const Real jw = _joint_work + sums[0];
   const Real jw_peak = std::max(_joint_work_peak, jw);
   const Real stored_peak = std::max(_stored_peak, sums[2]);
   const Real jw_gross = _joint_work_gross + sums[1];
   const Real sw = _slide_work + sums[4];
   const Real sw_peak = std::max(_slide_work_peak, sw);
-  const bool slide_created = (slideLinesLive() || _has_sleepy) &&
-                             contactCreatedEnergy(sw, sw_peak + kSlideLag * sums[5], 0, 0);
+  const Real sw_carried = _slide_carried + sums[6];
+  const bool slide_created =
+      (slideLinesLive() || _has_sleepy) &&
+      contactCreatedEnergy(sw, sw_peak + kSlideLag * sums[5] + kSlideRoundOff * sw_carried, 0, 0);
   const bool created = bad >= cp.count && sums[3] > 0 &&
                        (contactCreatedEnergy(jw, jw_peak, stored_peak, jw_gross) || slide_created);
   if (created)
@@ -220,6 +236,7 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   _joint_work_gross = jw_gross;
   _slide_work = sw;
   _slide_work_peak = sw_peak;
+  _slide_carried = sw_carried;
   _stored_peak = stored_peak;
   _dt_prev = dt;
   return ContactFailure();

@@ -149,7 +149,7 @@ void ContactSystem::saveState(RestartWriter &out, MPI_Comm comm,
           std::vector<double>{_joint_work, _joint_work_peak, _joint_work_gross, _stored_peak,
                               _slide_work, _slide_work_peak, _dt_prev, double(_max_count),
                               double(_binned_cycle), _geom.h_max,
-                              double(planes.size() / size_t(width))});
+                              double(planes.size() / size_t(width)), _slide_carried});
   out.put("contact.planes", planes);
 
   // what each rank adds up alone: its contact work and stored energy, and its last impulses
@@ -176,7 +176,7 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
                               const std::vector<Index> &node_global)
 {
   const std::string where = "restart file '" + in.path() + "': ";
-  const std::vector<double> sc = in.reals("contact.scalars", 11);
+  const std::vector<double> sc = in.reals("contact.scalars", 12);
   _joint_work = sc[0];
   _joint_work_peak = sc[1];
   _joint_work_gross = sc[2];
@@ -188,6 +188,7 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
   _binned_cycle = long(sc[8]);
   _geom.h_max = sc[9];
   const long n = long(sc[10]);
+  _slide_carried = sc[11];
   const int width = planeRowWidth(_cp);
   const std::vector<double> rows = in.reals("contact.planes", n * width);
 

@@ -253,10 +253,11 @@ private:
   Real _work = 0;    ///< contact energy [J]
   // energy-creation check (ContactFinish.cpp): the joint CPs' net work, its peak, the sum of
   // its |increments|, the peak stored energy, and the step of the last cycle
-  RealView _cp_work;
+  RealView _cp_work, _cp_carried; ///< per CP this cycle: its net work, the work it carries
   RealView _approach; ///< per CP: its normal approach velocity in step 9, for the step-12 limit
   Real _joint_work = 0, _joint_work_peak = 0, _joint_work_gross = 0, _stored_peak = 0;
   Real _slide_work = 0, _slide_work_peak = 0; ///< the slide lines' net work and its peak
+  Real _slide_carried = 0; ///< the work the slide lines carried between the bodies, summed |.|
   Real _dt_prev = 0;
   Real _stored = 0;
   Index _max_count = 0;
