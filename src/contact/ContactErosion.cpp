@@ -2,6 +2,7 @@
 // the contact surfaces and the interior faces they expose join them, at the next search. Every
 // rank holds the same list of eroded elements, so a face is active on every rank alike.
 #include "contact/ContactSystem.hpp"
+#include "io/RestartFile.hpp"
 
 #include <algorithm>
 #include <iterator>
@@ -24,6 +25,12 @@ bool ContactSystem::applyErosion()
                  std::back_inserter(all));
   _eroded.swap(all);
   _eroded_pending.clear();
+  activateExposedFaces();
+  return true;
+}
+
+void ContactSystem::activateExposedFaces()
+{
   auto eroded = [&](Index e) {
     return e >= 0 && std::binary_search(_eroded.begin(), _eroded.end(), e);
   };
@@ -35,7 +42,17 @@ bool ContactSystem::applyErosion()
     active(f) = !eroded(i.mesh_element) && (i.twin < 0 || eroded(i.twin)) ? 1 : 0;
   }
   Kokkos::deep_copy(_own.active, active);
-  return true;
+}
+
+void ContactSystem::loadErosion(const RestartReader &in)
+{
+  auto ids = [&](const char *name) {
+    const std::vector<double> v = in.reals(name);
+    return std::vector<Index>(v.begin(), v.end());
+  };
+  _eroded = ids("contact.eroded");
+  _eroded_pending = ids("contact.eroded_pending");
+  activateExposedFaces();
 }
 
 } // namespace scpdyn

@@ -151,6 +151,10 @@ void ContactSystem::saveState(RestartWriter &out, MPI_Comm comm,
                               double(_binned_cycle), _geom.h_max,
                               double(planes.size() / size_t(width)), _slide_carried});
   out.put("contact.planes", planes);
+  // the same lists on every rank (elementsEroded())
+  out.put("contact.eroded", std::vector<double>(_eroded.begin(), _eroded.end()));
+  out.put("contact.eroded_pending",
+          std::vector<double>(_eroded_pending.begin(), _eroded_pending.end()));
 
   // what each rank adds up alone: its contact work and stored energy, and its last impulses
   // with the work they still do in the next cycle, 1/2 v^n.I^{n-1/2} (finish())

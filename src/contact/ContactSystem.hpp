@@ -138,6 +138,9 @@ public:
   /// faces of the elements eroded since the last search leave, the faces they expose join.
   /// Returns whether the own faces' activity changed (ownFaces() then tells other ranks).
   bool applyErosion();
+  /// \brief After a restart, before the ghost faces are rebuilt: the eroded elements saveState()
+  /// wrote, and the own faces active as they were when it wrote them.
+  void loadErosion(const RestartReader &in);
   /// \brief Per ghost face (order of setGhostFaces): 1 if a live CP uses it. Until the next
   /// search only these need fresh ghost data.
   std::vector<char> ghostFacesInPlanes() const;
@@ -226,6 +229,7 @@ private:
   bool _has_slide = false, _has_friction = false;
   std::vector<Index> _eroded;         ///< eroded elements, global ids, ascending (11.6)
   std::vector<Index> _eroded_pending; ///< ... eroded since the last search
+  void activateExposedFaces();        ///< own faces active by _eroded
   Index _self_contact_planes = 0;     ///< self-contact CPs (11.5) since the last search, all ranks
   /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
   bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }

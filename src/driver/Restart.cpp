@@ -243,9 +243,14 @@ void Solver::loadState(const RestartReader &in)
   updateVelocityValues(_m.bc, _time);
   if (_m.contact)
   {
-    // the ghost faces at the restart positions hold the faces of every CP of this rank
+    // the faces erosion had exposed; then the ghost faces at the restart positions hold the
+    // faces of every CP of this rank
+    _m.contact->loadErosion(in);
     if (_m.dd)
+    {
+      _m.dd->own_faces = _m.contact->ownFaces();
       rebuildGhostFaces();
+    }
     _m.contact->loadState(in, _m.dd ? _m.comm : MPI_COMM_NULL, nodeSlotGlobalIds());
     if (_m.dd && !_m.contact->searchDue(_cycle))
       restrictGhosts();

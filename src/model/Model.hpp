@@ -56,6 +56,9 @@ struct Model
   Deck deck;
   HostMesh mesh; ///< this rank's mesh (the whole mesh on one rank)
   std::vector<HostFace> external_faces;
+  /// the interior faces of the parts whose material erodes, twins as global element ids: they
+  /// join the part's contact surfaces when erosion exposes them (docs/theory.md 11.6)
+  std::vector<HostFace> interior_faces;
   std::map<std::string, std::vector<Index>> node_sets;
   std::map<std::string, std::vector<HostFace>> face_sets;
 

@@ -21,6 +21,8 @@ void ModelSetup::setupContact()
   in.deck = &_m.deck;
   in.mesh = &_m.mesh;
   in.external_faces = &_m.external_faces;
+  if (!_m.interior_faces.empty())
+    in.interior_faces = &_m.interior_faces;
   in.face_sets = &_m.face_sets;
   in.host_to_device_element = &_m.host_to_device_element;
   in.nodes = _m.nodes;

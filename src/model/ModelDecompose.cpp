@@ -80,6 +80,7 @@ void ModelSetup::decompose()
   _m.dd->output_cell = std::move(serial_cell);
 
   _m.external_faces = localFaces(_m.external_faces, d);
+  _m.interior_faces = localFaces(_m.interior_faces, d);
   _m.dd->global_node = std::move(d.global_node);
   _m.dd->global_element = std::move(d.global_element);
   _m.mesh = std::move(d.mesh);

@@ -272,6 +272,12 @@ void ModelSetup::setupMesh()
                    _m.mesh.parts[size_t(o.part_a)].name.c_str(),
                    _m.mesh.parts[size_t(o.part_b)].name.c_str(), o.count, long(o.element));
   _m.external_faces = extractExternalFaces(_m.mesh);
+  std::vector<char> eroding(_m.mesh.parts.size(), 0);
+  for (size_t p = 0; p < _m.mesh.parts.size(); ++p)
+    eroding[p] = _m.materials_host[size_t(_m.mesh.parts[p].material)].erosion.active ? 1 : 0;
+  if (std::find(eroding.begin(), eroding.end(), char(1)) != eroding.end() &&
+      !_m.deck.contact.surfaces.empty())
+    _m.interior_faces = interiorFaces(_m.mesh, eroding);
 }
 
 void ModelSetup::setupFields()

@@ -341,5 +341,7 @@ TEST(RestartFile, SigtermLeavesAFileThatContinuesTheRun)
 } // namespace
 
 // a restart after the neck eroded (at a quarter of the run): the eroded flags and the eroded
-// energy come back, and the run goes on bit for bit
-INSTANTIATE_TEST_SUITE_P(ErodingDeck, RestartBitwise, ::testing::Values("necked_bar_2d"));
+// energy come back, and the run goes on bit for bit; with contact, also the faces erosion had
+// exposed and the elements eroded since the last search
+INSTANTIATE_TEST_SUITE_P(ErodingDeck, RestartBitwise,
+                         ::testing::Values("necked_bar_2d", "eroding_plate_2d"));

@@ -266,10 +266,11 @@ TEST_P(RestartDecomposed, AnotherRankCountContinuesToRoundOff)
 }
 
 // decks whose cycles read contact histories: a quasi-implicit joint, an explicit one (its time
-// step from the CPs' approach), a sleepy wall with plasticity and a slide line
+// step from the CPs' approach), a sleepy wall with plasticity and a slide line, a slide line on
+// faces that erosion exposes (restart while the plate erodes)
 INSTANTIATE_TEST_SUITE_P(ContactDecks, RestartDecomposed,
                          ::testing::Values("block_impact_2d", "explicit_touching_2d",
-                                           "sleepy_wall_2d"));
+                                           "sleepy_wall_2d", "eroding_plate_2d"));
 
 TEST(RestartDecomposedFile, BadFileIsRefusedOnEveryRank)
 {

@@ -408,3 +408,11 @@ TEST(SolverDecomposed, NeckedBar2DErodesAsSerial)
 {
   expectInvariant("necked bar 2D (erosion)", "necked_bar_2d.yaml", 100);
 }
+
+// Erosion with contact: the plate's faces that erosion exposes join the slide line on every rank
+// alike (ghost faces too), so the punch meets the same layers in the same cycles. Pass: 1e-9
+// relative.
+TEST(SolverDecomposed, ErodingPlate2DPerforatesAsSerial)
+{
+  expectInvariant("eroding plate 2D (erosion + contact)", "eroding_plate_2d.yaml", 300);
+}
