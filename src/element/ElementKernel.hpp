@@ -24,7 +24,11 @@ enum class Scatter
 
 /// \brief Step 6 for the elements of one group: element e alone (any type), or a pack of
 /// kElementLanes hexes (lane l = element first + l), with the same results bit for bit.
-template <ElementType T, bool Axi>
+/// Erosion (ElementControls::erosion): skip eroded elements, test the others for erosion, and
+/// run packs lane by lane. A compile-time switch, so that the kernel of a deck without erosion
+/// has none of these tests in its loops: a runtime flag there, though never set, made the box
+/// deck's cycle ~10 % slower (perf/results/log.md).
+template <ElementType T, bool Axi, bool Erosion>
 struct ElementKernel
 {
   static constexpr int N = ElementTraits<T>::nodes;
@@ -75,12 +79,13 @@ struct ElementKernel
   KOKKOS_INLINE_FUNCTION void finish(const Index e, const Real *history, const ElementState &s,
                                      const ElementResult &r, Real &local_min) const
   {
-    if (ctl.erosion && erodesInStep(e, history, s, r.stable_dt))
-    {
-      e_eroded(e) = kErodingNow; // its last state, and no force, no step of this cycle
-      clearCornerSlots(e);
-      return;
-    }
+    if constexpr (Erosion)
+      if (erodesInStep(e, history, s, r.stable_dt))
+      {
+        e_eroded(e) = kErodingNow; // its last state, and no force, no step of this cycle
+        clearCornerSlots(e);
+        return;
+      }
     if (!(r.stable_dt > 0))
     {
       const Real flag = -Real(e + 1);
@@ -161,11 +166,12 @@ struct ElementKernel
 
   KOKKOS_INLINE_FUNCTION void one(const Index e, Real &local_min) const
   {
-    if (ctl.erosion && e_eroded(e) != 0)
-    {
-      clearCornerSlots(e);
-      return;
-    }
+    if constexpr (Erosion)
+      if (e_eroded(e) != 0)
+      {
+        clearCornerSlots(e);
+        return;
+      }
     Real x[N][3], v[N][3];
     for (int a = 0; a < N; ++a)
     {
@@ -281,7 +287,7 @@ struct ElementKernel
   {
     constexpr int W = kElementLanes;
     using P = LanePack;
-    if (ctl.erosion) // eroded lanes and eroding ones: the scalar path skips and flags them
+    if constexpr (Erosion) // eroded lanes and eroding ones: the scalar path skips and flags them
     {
       for (Index e = first; e < first + count; ++e)
         one(e, local_min);
@@ -413,14 +419,15 @@ struct ElementKernel
 #endif
 };
 
-/// \brief The kernel of step 6 for elements of type T on these fields.
-template <ElementType T, bool Axi>
-ElementKernel<T, Axi> makeElementKernel(const ElementControls &ctl, Scatter scatter,
-                                        const NodeFields &nodes, const ElementFields &el,
-                                        const DeviceView<MaterialParams *> &materials,
-                                        const NodeCorners &corners)
+/// \brief The kernel of step 6 for elements of type T on these fields (Erosion: as
+/// ctl.erosion).
+template <ElementType T, bool Axi, bool Erosion>
+ElementKernel<T, Axi, Erosion> makeElementKernel(const ElementControls &ctl, Scatter scatter,
+                                                 const NodeFields &nodes, const ElementFields &el,
+                                                 const DeviceView<MaterialParams *> &materials,
+                                                 const NodeCorners &corners)
 {
-  ElementKernel<T, Axi> k;
+  ElementKernel<T, Axi, Erosion> k;
   k.conn = el.conn;
   k.row_pack = el.row_pack;
   k.x_n = nodes.x;

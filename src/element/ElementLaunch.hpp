@@ -42,22 +42,18 @@ namespace element_launch
 using element_kernel::ElementKernel;
 using element_kernel::Scatter;
 
-template <ElementType T, bool Axi, class AfterBlock>
-Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scatter,
-                 const NodeFields &nodes, const ElementFields &el,
-                 const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
-                 const AfterBlock &after, const int group_index)
+/// Kernel k over group g; corner_chunks: NodeCorners::chunks.
+template <ElementType T, bool Axi, bool Erosion, class AfterBlock>
+Real launchKernel(const ElementGroup &g, const ElementKernel<T, Axi, Erosion> &k,
+                  const int corner_chunks, const AfterBlock &after, const int group_index)
 {
-  const ElementKernel<T, Axi> k =
-      element_kernel::makeElementKernel<T, Axi>(ctl, scatter, nodes, el, materials, corners);
-
   Real dt_min = 0;
   // one chunk a thread, its packs or elements in order; with an active hook, after each block
   // of them, the hook
-  if (after.active || scatter == Scatter::Corners)
+  if (after.active || k.scatter == Scatter::Corners)
   {
     const ElementGroup grp = g;
-    const int chunks = after.active ? after.chunks : corners.chunks;
+    const int chunks = after.active ? after.chunks : corner_chunks;
     constexpr Index B = kElementBlock;
     Kokkos::parallel_reduce(
         "elementChunks", Kokkos::RangePolicy<ExecSpace>(0, chunks),
@@ -98,6 +94,24 @@ Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scat
       KOKKOS_LAMBDA(const Index e, Real &local_min) { k.one(e, local_min); },
       Kokkos::Min<Real>(dt_min));
   return dt_min;
+}
+
+/// Group g with the kernel of its elements' type, with or without erosion's tests as the deck
+/// needs them (ElementKernel's Erosion).
+template <ElementType T, bool Axi, class AfterBlock>
+Real launchGroup(const ElementGroup &g, const ElementControls &ctl, Scatter scatter,
+                 const NodeFields &nodes, const ElementFields &el,
+                 const DeviceView<MaterialParams *> &materials, const NodeCorners &corners,
+                 const AfterBlock &after, const int group_index)
+{
+  using element_kernel::makeElementKernel;
+  if (ctl.erosion)
+    return launchKernel(
+        g, makeElementKernel<T, Axi, true>(ctl, scatter, nodes, el, materials, corners),
+        corners.chunks, after, group_index);
+  return launchKernel(g,
+                      makeElementKernel<T, Axi, false>(ctl, scatter, nodes, el, materials, corners),
+                      corners.chunks, after, group_index);
 }
 
 template <bool Axi, class AfterBlock>

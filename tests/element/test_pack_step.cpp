@@ -48,7 +48,7 @@ std::vector<Real> hexStep(const Solver &s, const bool packs)
   NodeFields nodes = s.nodes();
   nodes.f_int = VectorView("f_int", size_t(nodes.count));
   const ElementFields el = test::copyElementState(s.elements());
-  const auto k = element_kernel::makeElementKernel<ElementType::Hex8, false>(
+  const auto k = element_kernel::makeElementKernel<ElementType::Hex8, false, false>(
       ctl, element_kernel::Scatter::Plain, nodes, el, s.materials(), NodeCorners());
   for (const ElementGroup &g : s.groups())
     if (g.type == ElementType::Hex8)
