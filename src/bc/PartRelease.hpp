@@ -17,11 +17,11 @@ struct PartRelease
   /// The held components of one release time.
   struct Group
   {
-    Real time = 0; ///< [s]
-    int slot = -1; ///< its velocity-constraint value (BoundaryConditions::velocity_value)
-    std::vector<Index> node;     ///< local node of each held component
-    std::vector<int> component;  ///< its component
-    std::vector<Real> velocity;  ///< its velocity from the release on [m/s]
+    Real time = 0;              ///< [s]
+    int slot = -1;              ///< its constraint (a BoundaryConditions::velocity_value)
+    std::vector<Index> node;    ///< local node of each held component
+    std::vector<int> component; ///< its component
+    std::vector<Real> velocity; ///< its velocity from the release on [m/s]
     bool released = false;
   };
   std::vector<Group> groups;

@@ -153,9 +153,9 @@ void Solver::stepElementSolvers()
                                    _m.dd ? _m.dd->owned_device : IndexView(), _gravity_next.data());
     _m.sweep.loads = _m.external_loads;
   }
-  const ElementStepResult r = computeElementForces(_m.groups, controls, _m.nodes, _m.elems,
-                                                   _m.materials, _m.corners,
-                                                   fused() ? _m.sweep : _no_sweep);
+  const ElementStepResult r =
+      computeElementForces(_m.groups, controls, _m.nodes, _m.elems, _m.materials, _m.corners,
+                           fused() ? _m.sweep : _no_sweep);
   if (controls.gather)
     gatherCornerForces(_m.nodes, _m.corners);
   if (controls.erosion)

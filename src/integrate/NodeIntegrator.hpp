@@ -61,7 +61,7 @@ struct NodeIntegrator
   RealView vbc;    ///< BoundaryConditions::velocity_current
   IndexView owned; ///< empty: every node counts in the sums
   Real dt = 0, half_dt = 0;
-  Real g[3] = {0, 0, 0}; ///< the next cycle's gravity (Clear)
+  Real g[3] = {0, 0, 0};      ///< the next cycle's gravity (Clear)
   MassDamping damping;        ///< read with Damp only
   VectorView damping_impulse; ///< last step's damping impulse (Damp) [N s]
 

@@ -57,12 +57,12 @@ boundary_conditions:
 
 struct ColumnResult
 {
-  double stress_error = 0;      ///< worst |sigma_yy / (-rho g (L - h/2)) - 1| of the bottom row
-  double ke_settled = 0;        ///< kinetic energy at the end of the settling stage [J/m]
-  double ke_late = 0;           ///< the largest kinetic energy after it [J/m]
-  double worst_balance = 0;     ///< the largest |energy_balance_error| of the run
-  EnergyReport end;             ///< the energies at the end
-  double unbooked_balance = 0;  ///< the end's balance error without the damping energy
+  double stress_error = 0;     ///< worst |sigma_yy / (-rho g (L - h/2)) - 1| of the bottom row
+  double ke_settled = 0;       ///< kinetic energy at the end of the settling stage [J/m]
+  double ke_late = 0;          ///< the largest kinetic energy after it [J/m]
+  double worst_balance = 0;    ///< the largest |energy_balance_error| of the run
+  EnergyReport end;            ///< the energies at the end
+  double unbooked_balance = 0; ///< the end's balance error without the damping energy
 };
 
 ColumnResult runColumn(const std::string &settling, bool sticky, const std::string &name)
@@ -127,16 +127,16 @@ void expectSettled(const ColumnResult &r, const char *what)
 
 TEST(Settling, AColumnComesToRestWithRhoGHInItsBottomRowAndTheBalanceCloses)
 {
-  expectSettled(runColumn("settling: {end: " + std::to_string(kSettle) + "}", false,
-                          "settling_column"),
-                "column");
+  expectSettled(
+      runColumn("settling: {end: " + std::to_string(kSettle) + "}", false, "settling_column"),
+      "column");
 }
 
 TEST(Settling, TwoBlocksTiedByAStickyJointSettleLikeTheColumn)
 {
-  expectSettled(runColumn("settling: {end: " + std::to_string(kSettle) + "}", true,
-                          "settling_sticky"),
-                "sticky pair");
+  expectSettled(
+      runColumn("settling: {end: " + std::to_string(kSettle) + "}", true, "settling_sticky"),
+      "sticky pair");
 }
 
 TEST(Settling, WithoutTheStageTheColumnRingsFarAboveTheBound)
@@ -197,8 +197,7 @@ TEST(Release, AHeldBlockStaysPutUntilItsReleaseTimeAndThenMovesAtItsInitialVeloc
 {
   const Deck deck = deckFromText(kReleaseDeck, "release");
   EXPECT_EQ(deck.parts[0].release_time, kRelease);
-  EXPECT_EQ(deckFromText(resolvedDeckText(deck), "release_back").parts[0].release_time,
-            kRelease);
+  EXPECT_EQ(deckFromText(resolvedDeckText(deck), "release_back").parts[0].release_time, kRelease);
   Solver s(deck, MPI_COMM_SELF);
   const double zero[2] = {0, 0};
   const double v0[2] = {3, -1};
