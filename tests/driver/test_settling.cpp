@@ -158,7 +158,8 @@ TEST(Settling, TheDefaultDampingAndTheKeysAreWrittenBack)
   EXPECT_EQ(back.settling.damping, d.settling.damping);
   const Deck none = deckFromText(columnDeck("", false), "settling_none");
   EXPECT_FALSE(none.settling.active());
-  EXPECT_EQ(resolvedDeckText(none).find("settling"), std::string::npos);
+  EXPECT_EQ(resolvedDeckText(none).find("\nsettling:"), std::string::npos);
+  EXPECT_NE(resolvedDeckText(d).find("\nsettling:"), std::string::npos);
 }
 
 // A block 0.1 x 0.1 m held until t_r = 0.5 ms, then given v0 = (3, -1) m/s by
