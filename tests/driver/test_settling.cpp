@@ -148,6 +148,36 @@ TEST(Settling, WithoutTheStageTheColumnRingsFarAboveTheBound)
   EXPECT_EQ(r.end.damping, 0);
 }
 
+TEST(Settling, ARestartDuringTheStageContinuesTheSameRun)
+{
+  // restart files inside the stage and just after it: the damping impulses, the damping work
+  // and whether the last cycle damped are in them, so the run goes on with the same bits
+  const std::string dir = std::string(SCPDYN_TEST_WORKDIR) + "/settling_restart";
+  const Deck deck =
+      deckFromText(columnDeck("settling: {end: " + std::to_string(kSettle) +
+                                  "}\noutput: {restart_interval: " + std::to_string(kSettle / 2) +
+                                  ", restart_keep: 10}",
+                              false),
+                   "settling_restart");
+  Solver whole(deck, MPI_COMM_SELF);
+  whole.run(dir);
+  const std::vector<std::string> files = restartFiles(dir);
+  ASSERT_GE(files.size(), 2u);
+  for (size_t f = 0; f < files.size(); ++f)
+  {
+    SCOPED_TRACE(files[f]);
+    Solver again(deck, MPI_COMM_SELF);
+    again.run(dir + "_continued_" + std::to_string(f), files[f]);
+    ASSERT_EQ(again.cycles(), whole.cycles());
+    EXPECT_EQ(again.energies().damping, whole.energies().damping);
+    auto a = Kokkos::create_mirror_view_and_copy(HostSpace(), whole.nodes().x);
+    auto b = Kokkos::create_mirror_view_and_copy(HostSpace(), again.nodes().x);
+    for (Index n = 0; n < whole.nodes().count; ++n)
+      for (int i = 0; i < 2; ++i)
+        EXPECT_EQ(a(n, i), b(n, i)) << "node " << n;
+  }
+}
+
 TEST(Settling, TheDefaultDampingAndTheKeysAreWrittenBack)
 {
   const Deck d = deckFromText(columnDeck("settling: {end: 0.2}", false), "settling_default");
