@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 using namespace scpdyn;
 using namespace scpdyn::test;
@@ -167,7 +168,9 @@ TEST(Settling, ARestartDuringTheStageContinuesTheSameRun)
   {
     SCOPED_TRACE(files[f]);
     Solver again(deck, MPI_COMM_SELF);
-    again.run(dir + "_continued_" + std::to_string(f), files[f]);
+    const std::string continued = dir + "_continued_" + std::to_string(f);
+    std::filesystem::remove_all(continued); // a directory of an earlier run is not continued
+    again.run(continued, files[f]);
     ASSERT_EQ(again.cycles(), whole.cycles());
     EXPECT_EQ(again.energies().damping, whole.energies().damping);
     auto a = Kokkos::create_mirror_view_and_copy(HostSpace(), whole.nodes().x);
@@ -277,6 +280,7 @@ TEST(Release, ARestartAfterTheReleaseContinuesTheSameRun)
   const std::vector<std::string> files = restartFiles(dir);
   ASSERT_FALSE(files.empty());
   Solver again(deck, MPI_COMM_SELF);
+  std::filesystem::remove_all(dir + "_continued"); // a directory of an earlier run is not continued
   again.run(dir + "_continued", files.front());
   ASSERT_EQ(again.cycles(), whole.cycles());
   auto a = Kokkos::create_mirror_view_and_copy(HostSpace(), whole.nodes().x);
