@@ -237,6 +237,11 @@ void Solver::stepUpdateNodes()
 
 void Solver::releaseParts()
 {
+  bool due = false; // the same on every rank: they have the same groups (ModelSetup)
+  for (const PartRelease::Group &g : _m.release.groups)
+    due = due || (!g.released && !(_time < g.time));
+  if (!due)
+    return;
   NodeSums gained =
       releaseDue(_m.release, _time, _m.nodes, _m.dd ? _m.dd->owned_device : IndexView());
   if (_m.dd) // every rank releases in the same cycle: the sums are collective

@@ -602,6 +602,19 @@ void ModelSetup::setupPartRelease()
         hold[size_t(h_conn(e, a))] = std::max(hold[size_t(h_conn(e, a))], t);
   }
   _m.release = holdNodes(hold, _m.deck.dimension, _m.nodes, _m.bc);
+  // every rank has a group for every release time of the deck, some maybe without nodes, so
+  // that the ranks release in the same cycles and reduce what they released together
+  for (const PartSpec &p : _m.deck.parts)
+  {
+    bool known = !(p.release_time > 0);
+    for (const PartRelease::Group &g : _m.release.groups)
+      known = known || g.time == p.release_time;
+    if (known)
+      continue;
+    PartRelease::Group g;
+    g.time = p.release_time;
+    _m.release.groups.push_back(g);
+  }
 }
 
 void ModelSetup::setupInitialState()
