@@ -21,6 +21,9 @@ struct NodeFields
   /// last step's velocity-constraint reaction per constrained component, m (v^{n+1} - v^n) / dt
   /// - F [N] (written by step 12; empty without velocity BCs)
   VectorView reaction;
+  /// last step's settling damping impulse per component [N s] (docs/theory.md 2.4; empty
+  /// without a settling stage)
+  VectorView damping_impulse;
   RealView mass; ///< lumped mass [kg] (per metre in plane strain, per radian axisymmetric)
   DeviceView<int *[3]> bc; ///< per component: index of the velocity BC value, or -1
   Index count = 0;

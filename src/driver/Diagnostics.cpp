@@ -133,13 +133,14 @@ EnergyReport Solver::energies() const
   for (int i = 0; i < 3; ++i)
     r.momentum[i] = _last_sums.momentum[i];
   r.external_work = _external_work;
+  r.damping = -_damping_work;
   // the leapfrog conserves 1/2 m v^n.v^{n+1} + IE(x^{n+1/2}) (verification.md T1)
   r.eroded = _eroded_energy;
   r.eroded_elements = _eroded_elements;
   const Real total = _kinetic_mid + internal + hourglass + r.contact + _eroded_energy;
   const Real scale = std::max({_energy_scale, std::abs(_initial_energy) + std::abs(_external_work),
                                std::numeric_limits<Real>::min()});
-  r.balance_error = (total - _initial_energy - _external_work) / scale;
+  r.balance_error = (total - _initial_energy - _external_work - _damping_work) / scale;
   return r;
 }
 

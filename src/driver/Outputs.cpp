@@ -366,6 +366,8 @@ void Outputs::openRootWriters()
     history.push_back("failed_contacts");
   history.push_back("eroded_energy");
   history.push_back("eroded_elements");
+  if (deck.settling.active())
+    history.push_back("damping_energy");
   _history = std::make_unique<CsvWriter>(_dir + "/history.csv", history, _continued);
   std::vector<std::string> columns{"time"};
   for (const auto &g : _solver.gauges())
@@ -576,6 +578,8 @@ void Outputs::writeRows()
     history.push_back(failed);
   history.push_back(r.eroded);
   history.push_back(double(r.eroded_elements));
+  if (_solver.deck().settling.active())
+    history.push_back(r.damping);
   _history->row(history);
   if (_gauges)
     _gauges->row(row);
@@ -762,6 +766,8 @@ void Outputs::finishWith(const std::string &status, const std::string &error,
       .add("hourglass", e.hourglass)
       .add("contact", e.contact)
       .add("external_work", e.external_work);
+  if (_solver.deck().settling.active())
+    energies.add("damping", e.damping);
   s.add("energies", energies);
   JsonObject parts; // the values of the `part` field of fields.h5, by name
   for (size_t p = 0; p < _solver.mesh().parts.size(); ++p)

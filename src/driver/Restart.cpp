@@ -50,6 +50,7 @@ void eachNodeField(const NodeFields &n, Fn &&fn)
   fn("nodes.f_ext", n.f_ext);
   fn("nodes.external_impulse", n.external_impulse);
   fn("nodes.reaction", n.reaction);
+  fn("nodes.damping_impulse", n.damping_impulse);
 }
 
 template <class Fn>
@@ -164,6 +165,7 @@ void Solver::saveState(RestartWriter &out) const
                               _last_sums.kinetic_mid, _last_sums.external_work,
                               _last_sums.momentum[0], _last_sums.momentum[1],
                               _last_sums.momentum[2], _eroded_energy, double(_eroded_elements)});
+  out.put("solver.settling", std::vector<double>{_damping_work, _damped_last ? 1.0 : 0.0});
   putStep(out, "solver.smallest_step", _smallest_step);
   putStep(out, "solver.next_step", _next_step);
   putStep(out, "solver.first_step", _first_step);
@@ -210,6 +212,12 @@ void Solver::loadState(const RestartReader &in)
     _last_sums.momentum[i] = s[14 + size_t(i)];
   _eroded_energy = s[17];
   _eroded_elements = long(s[18]);
+  if (_m.deck.settling.active()) // a deck with a settling stage is a newer file's
+  {
+    const std::vector<double> settling = in.reals("solver.settling", 2);
+    _damping_work = settling[0];
+    _damped_last = settling[1] != 0;
+  }
   _smallest_step = getStep(in, "solver.smallest_step");
   _next_step = getStep(in, "solver.next_step");
   _first_step = getStep(in, "solver.first_step");
@@ -239,6 +247,8 @@ void Solver::loadState(const RestartReader &in)
     scatterRows(v, _m.elems.count, in.reals(name, order.elements() * c), c,
                 [&](Index e) { return order.elementRow(e); });
   });
+  // the held parts released by then (the velocities are the file's)
+  markReleased(_m.release, _time, _m.nodes);
   // the values step 12 of the last cycle set, at the time it ended (the same bits)
   updateVelocityValues(_m.bc, _time);
   if (_m.contact)

@@ -143,7 +143,9 @@ void RunHistories::reactions(std::vector<double> &out) const
   for (Index n = 0; n < nodes.count; ++n)
     if (!dd || dd->owned[size_t(n)]) // a shared node once, on its owner
       for (int i = 0; i < 3; ++i)
-        if (bc(n, i) >= 0) // the BC of this component (its only constrained one)
+        // the BC of this component (its only constrained one); a held part's constraint
+        // (bc/PartRelease.hpp) comes after the deck's and has no column
+        if (bc(n, i) >= 0 && size_t(bc(n, i)) < out.size())
           out[size_t(bc(n, i))] += reaction(n, i);
 }
 

@@ -73,6 +73,9 @@ void Solver::cycle()
   // No shortened last step: a sudden change of dt changes the leapfrog's conserved energy
   // (an artefact in the balance); the run ends on the first cycle at or past the end time.
   _dt = _dt_next;
+  const SettlingSpec &settling = _m.deck.settling;
+  _damped = settling.active() && (_time < settling.end || _damped_last);
+  _damping_alpha = _time < settling.end ? settling.damping : 0;
   if (_next_step.dt == _dt && _dt < _smallest_step.dt) // the smallest step, now taken
   {
     _smallest_step = _next_step;
@@ -96,6 +99,9 @@ void Solver::cycle()
   stepUpdateNodes();              // 12: v, x; next stable time step
   _time += _dt;                   // 13: back to 3 (output by the caller)
   ++_cycle;
+  _damped_last = _damped && _damping_alpha > 0;
+  if (!_m.release.groups.empty())
+    releaseParts(); // the parts whose release time this cycle reached
   _cycle_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -141,14 +147,15 @@ void Solver::stepElementSolvers()
 {
   ScopedStep t(_timers, "06_element_solvers");
   const ElementControls controls = elementControls();
-  if (_m.sweep.active) // step 12 of the early nodes, in this step's sweep
+  if (fused()) // step 12 of the early nodes, in this step's sweep
   {
     _m.sweep.node = nodeIntegrator(_m.nodes, _m.bc.velocity_current, _dt,
                                    _m.dd ? _m.dd->owned_device : IndexView(), _gravity_next.data());
     _m.sweep.loads = _m.external_loads;
   }
-  const ElementStepResult r = computeElementForces(_m.groups, controls, _m.nodes, _m.elems,
-                                                   _m.materials, _m.corners, _m.sweep);
+  const ElementStepResult r =
+      computeElementForces(_m.groups, controls, _m.nodes, _m.elems, _m.materials, _m.corners,
+                           fused() ? _m.sweep : _no_sweep);
   if (controls.gather)
     gatherCornerForces(_m.nodes, _m.corners);
   if (controls.erosion)
@@ -176,7 +183,7 @@ void Solver::stepElementSolvers()
   collectiveCheck(error); // every rank stops before the shared-node exchange
   if (!_all_eroded)       // else the last element limit stays: the run ends with this cycle
     _limits.element = r.dt;
-  if (_check_sweep)
+  if (_check_sweep && fused())
     snapshotEarlyNodes(_m.nodes, _early_snapshot);
 }
 
@@ -197,13 +204,15 @@ void Solver::stepNodeBoundaryConditions()
 void Solver::stepUpdateNodes()
 {
   ScopedStep t(_timers, "12_update_nodes");
-  if (_check_sweep)
+  if (_check_sweep && fused())
     checkEarlyNodes();
   updateVelocityValues(_m.bc, _time + _dt);
+  const MassDamping damping = massDamping(_damping_alpha, _dt);
   _last_sums = updateNodes(_m.nodes, _m.bc, _dt, _m.deck.dimension,
                            _m.dd ? _m.dd->owned_device : IndexView(), _m.external_loads,
-                           _gravity_next.data(), _m.sweep.active ? &_m.sweep.late_runs : nullptr);
-  if (_m.sweep.active) // the early nodes' sums, from step 6
+                           _gravity_next.data(), fused() ? &_m.sweep.late_runs : nullptr,
+                           _damped ? &damping : nullptr);
+  if (fused()) // the early nodes' sums, from step 6
     _last_sums += sweepSums(_m.sweep);
   _forces_zeroed = true;
   const MPI_Comm comm = _m.dd ? _m.comm : MPI_COMM_NULL;
@@ -215,6 +224,7 @@ void Solver::stepUpdateNodes()
   _dt_next = nextTimeStep(_limits, timeStepControls(), _last_sums, comm, &_stop_signal);
   recordNextStep(comm);
   _external_work += _last_sums.external_work;
+  _damping_work += _last_sums.damping_work;
   _kinetic_mid = _last_sums.kinetic_mid;
   _energy_scale = std::max(_energy_scale, _last_sums.kinetic);
   if (!std::isfinite(_last_sums.kinetic))
@@ -223,6 +233,34 @@ void Solver::stepUpdateNodes()
     os << "non-finite nodal velocities at cycle " << _cycle << ", time " << _time;
     throw SimulationError(os.str());
   }
+}
+
+void Solver::releaseParts()
+{
+  bool due = false; // the same on every rank: they have the same groups (ModelSetup)
+  for (const PartRelease::Group &g : _m.release.groups)
+    due = due || (!g.released && !(_time < g.time));
+  if (!due)
+    return;
+  NodeSums gained =
+      releaseDue(_m.release, _time, _m.nodes, _m.dd ? _m.dd->owned_device : IndexView());
+  if (_m.dd) // every rank releases in the same cycle: the sums are collective
+  {
+    Real sum[4] = {gained.kinetic, gained.momentum[0], gained.momentum[1], gained.momentum[2]};
+    allReduceSum(sum, 4, _m.comm);
+    gained.kinetic = gained.kinetic_mid = gained.external_work = sum[0];
+    for (int i = 0; i < 3; ++i)
+      gained.momentum[i] = sum[1 + i];
+  }
+  // the released velocity is given, not earned: its kinetic energy is booked as external work
+  // (docs/theory.md 2.4), and the energies of this cycle's row include it
+  _external_work += gained.external_work;
+  _kinetic_mid += gained.kinetic_mid;
+  _last_sums.kinetic += gained.kinetic;
+  _last_sums.kinetic_mid += gained.kinetic_mid;
+  for (int i = 0; i < 3; ++i)
+    _last_sums.momentum[i] += gained.momentum[i];
+  _energy_scale = std::max(_energy_scale, _last_sums.kinetic);
 }
 
 void Solver::recordNextStep(MPI_Comm comm)

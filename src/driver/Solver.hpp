@@ -41,6 +41,7 @@ struct EnergyReport
   Real balance_error = 0; ///< (E - E0 - W_ext) / reference, on the leapfrog's conserved energy
   Real momentum[3] = {0, 0, 0};
   Real contact_dissipation = 0; ///< part of `contact` dissipated (contact - stored)
+  Real damping = 0;             ///< energy the settling stage's damping dissipated (>= 0) [J]
   Real eroded = 0;              ///< internal + hourglass energy eroded elements held [J]
   long eroded_elements = 0;     ///< elements eroded so far, over all ranks
 };
@@ -99,6 +100,10 @@ public:
     return c;
   }
   long cycles() const { return _cycle; }
+  /// \brief This cycle's step 12 damps (the settling stage, docs/theory.md 2.4): before its
+  /// end, and the cycle after it (coefficient 0) that books the last damped impulse's second
+  /// half.
+  bool damped() const { return _damped; }
   /// \brief Every element is eroded: the run ended (docs/theory.md 11.6).
   bool allEroded() const { return _all_eroded; }
   const Deck &deck() const { return _m.deck; }
@@ -212,6 +217,15 @@ private:
   long _eroded_elements = 0; ///< elements eroded so far, over all ranks
   bool _all_eroded = false;  ///< no element is left: the run ends (docs/theory.md 11.6)
   NodeSums _last_sums;
+  // the settling stage (docs/theory.md 2.4)
+  bool _damped = false;      ///< this cycle's step 12 damps
+  bool _damped_last = false; ///< the last cycle's step 12 damped with a coefficient > 0
+  Real _damping_alpha = 0;   ///< this cycle's coefficient [1/s]
+  Real _damping_work = 0;    ///< work of the damping so far (<= 0) [J]
+  NodeSweep _no_sweep;       ///< the inactive sweep of a damped cycle (its step 12 is one pass)
+  /// \brief Step 6 integrates the early nodes this cycle (the sweep is off while damped).
+  bool fused() const { return _m.sweep.active && !_damped; }
+  void releaseParts();
   StepTimers _timers;
   double _cycle_wall = 0;
 };

@@ -106,6 +106,9 @@ struct PartSpec
   std::array<Real, 3> initial_velocity{{0, 0, 0}};
   bool merge_nodes = false; ///< merge nodes coincident with other merge_nodes parts
   PartPlacement placement;  ///< where the generated or read mesh is put
+  /// [s]: held fixed (v = 0) until this time, then moves from rest with its initial velocity
+  /// (bc/PartRelease.hpp); 0: free from the start
+  Real release_time = 0;
 };
 
 /// \brief A named set selected by part, by box, or by both (the part's nodes/faces in the box).
@@ -229,6 +232,19 @@ struct ContactSpec
   Real search_gap = -1;       ///< largest gap at which a CP is created [m]; < 0: largest face size
 };
 
+/// \brief Velocity decay factor of every underdamped mode over the settling stage with the
+/// default damping, alpha = 2 ln(kSettlingDecay) / settling.end (docs/theory.md 2.4).
+constexpr Real kSettlingDecay = 1e4;
+
+/// \brief The settling stage (docs/theory.md 2.4): mass-proportional damping of the nodal
+/// velocities for 0 <= t < end, so that the model comes to rest under gravity.
+struct SettlingSpec
+{
+  Real end = 0;     ///< [s]; 0: no settling stage
+  Real damping = 0; ///< mass-damping coefficient alpha [1/s] (the parser fills in the default)
+  bool active() const { return end > 0; }
+};
+
 struct Deck
 {
   std::string title;
@@ -252,6 +268,7 @@ struct Deck
   NodeUpdateMode node_update = NodeUpdateMode::Fused;
   std::array<Real, 3> gravity{{0, 0, 0}};
   std::string gravity_function; ///< scales gravity in time; empty: constant
+  SettlingSpec settling;
 
   // output
   std::string output_dir;       ///< default out/<deck stem>

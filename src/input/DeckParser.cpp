@@ -300,8 +300,8 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
 
     const YamlMap root =
         YamlValue(docs[0], "", docs[0].Mark().line + 1)
-            .map({"title", "dimension", "geometry", "time", "numerics", "gravity", "output",
-                  "materials", "parts", "node_sets", "face_sets", "functions",
+            .map({"title", "dimension", "geometry", "time", "numerics", "gravity", "settling",
+                  "output", "materials", "parts", "node_sets", "face_sets", "functions",
                   "boundary_conditions", "initial_conditions", "gauges", "contact"});
     deck.title = root.string("title", stem);
     if (!root.has("dimension"))
@@ -326,6 +326,7 @@ Deck parseDeckString(const std::string &yaml_text, const std::string &path)
     DeckNames names;
     names.functions = parseFunctions(root, deck);
     parseGravity(root, deck, names);
+    parseSettling(root, deck);
     names.materials = parseMaterials(root, deck);
     parseParts(root, deck, names, dir);
     parseSetsAndConditions(root, deck, names);

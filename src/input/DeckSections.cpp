@@ -221,8 +221,8 @@ void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::pat
     root.missing("parts");
   for (const YamlValue &item : root["parts"].list(1))
   {
-    const YamlMap m = item.map(
-        {"name", "material", "mesh", "initial_velocity", "merge_nodes", "translate", "rotate"});
+    const YamlMap m = item.map({"name", "material", "mesh", "initial_velocity", "merge_nodes",
+                                "translate", "rotate", "release_time"});
     PartSpec part;
     part.name = m["name"].string();
     claimName(names.parts, m["name"], part.name);
@@ -233,6 +233,13 @@ void parseParts(const YamlMap &root, Deck &deck, DeckNames &names, const fs::pat
       part.initial_velocity = m["initial_velocity"].realVector(deck.dimension);
     part.merge_nodes = m.boolean("merge_nodes", false);
     part.placement = parsePlacement(m, deck.dimension);
+    if (m.has("release_time"))
+    {
+      const YamlValue r = m["release_time"];
+      part.release_time = r.real();
+      if (!(part.release_time >= 0 && part.release_time < deck.end_time))
+        r.fail("must be in [0, time.end = " + formatReal(deck.end_time) + "), got " + r.text());
+    }
     deck.parts.push_back(part);
   }
 }
@@ -256,6 +263,26 @@ void parseGravity(const YamlMap &root, Deck &deck, const DeckNames &names)
     deck.gravity_function = m["function"].string();
     checkReference(m["function"], deck.gravity_function, "function", names.functions);
   }
+}
+
+void parseSettling(const YamlMap &root, Deck &deck)
+{
+  if (!root.has("settling"))
+    return;
+  const YamlValue item = root["settling"];
+  const YamlMap m = item.map({"end", "damping"});
+  if (!m.has("end"))
+    m.missing("end");
+  const YamlValue end = m["end"];
+  deck.settling.end = end.real();
+  if (!(deck.settling.end > 0 && deck.settling.end < deck.end_time))
+    end.fail("must be in (0, time.end = " + formatReal(deck.end_time) + "), got " + end.text());
+  if (deck.gravity[0] == 0 && deck.gravity[1] == 0 && deck.gravity[2] == 0)
+    item.fail("a settling stage needs gravity: the deck has none (give gravity: [...])");
+  // the default brings every underdamped mode down by kSettlingDecay in velocity by `end`
+  // (docs/theory.md 2.4)
+  deck.settling.damping = readReal(m, "damping", 2 * std::log(kSettlingDecay) / deck.settling.end,
+                                   isNonNegative, ">= 0");
 }
 
 void parseInitialConditions(const YamlMap &root, Deck &deck, const DeckNames &names,

@@ -77,6 +77,8 @@ void parseParts(const YamlMap &root, Deck &deck, DeckNames &names,
                 const std::filesystem::path &deck_dir);
 /// \brief gravity: a vector, or {value: vector, function: name}; after the functions.
 void parseGravity(const YamlMap &root, Deck &deck, const DeckNames &names);
+/// \brief settling: {end, damping}; after time and gravity.
+void parseSettling(const YamlMap &root, Deck &deck);
 /// \brief node_sets[], face_sets[], initial_conditions[], boundary_conditions[].
 void parseSetsAndConditions(const YamlMap &root, Deck &deck, DeckNames &names);
 /// \brief gauges[].

@@ -277,6 +277,13 @@ std::string resolvedDeckText(const Deck &deck)
     text(out << YAML::Key << "function" << YAML::Value, deck.gravity_function);
     out << YAML::EndMap;
   }
+  if (deck.settling.active()) // no key: no settling stage
+  {
+    out << YAML::Key << "settling" << YAML::Value << YAML::BeginMap;
+    real(out << YAML::Key << "end" << YAML::Value, deck.settling.end);
+    real(out << YAML::Key << "damping" << YAML::Value, deck.settling.damping);
+    out << YAML::EndMap;
+  }
   out << YAML::Key << "output" << YAML::Value << YAML::BeginMap;
   text(out << YAML::Key << "directory" << YAML::Value, deck.output_dir);
   real(out << YAML::Key << "field_interval" << YAML::Value, deck.field_interval);
@@ -314,6 +321,8 @@ std::string resolvedDeckText(const Deck &deck)
     writeMesh(out, p.mesh, dim);
     vector(out, "initial_velocity", p.initial_velocity, dim);
     out << YAML::Key << "merge_nodes" << YAML::Value << p.merge_nodes;
+    if (p.release_time > 0) // no key: free from the start
+      real(out << YAML::Key << "release_time" << YAML::Value, p.release_time);
     const auto &t = p.placement.translate;
     if (t[0] != 0 || t[1] != 0 || t[2] != 0)
       vector(out, "translate", t, dim);

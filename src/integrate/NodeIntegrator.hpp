@@ -3,6 +3,7 @@
 /// \brief Step 12 on one node (the leapfrog, its sums, and the next cycle's step 5), shared by
 /// updateNodes() and by the node sweep inside step 6 (integrate/NodeSweep.hpp).
 #include "core/Fields.hpp"
+#include "integrate/MassDamping.hpp"
 
 namespace scpdyn
 {
@@ -13,6 +14,7 @@ struct NodeSums
   Real kinetic = 0;       ///< 1/2 sum m |v^{n+1}|^2
   Real kinetic_mid = 0;   ///< 1/2 sum m v^n . v^{n+1} (the leapfrog's conserved kinetic part)
   Real external_work = 0; ///< work of f_ext and constraint reactions over the step, f.v^n dt
+  Real damping_work = 0;  ///< work of the settling damping over the step (<= 0), booked alike
   Real momentum[3] = {0, 0, 0};
 
   KOKKOS_INLINE_FUNCTION NodeSums &operator+=(const NodeSums &o)
@@ -20,6 +22,7 @@ struct NodeSums
     kinetic += o.kinetic;
     kinetic_mid += o.kinetic_mid;
     external_work += o.external_work;
+    damping_work += o.damping_work;
     for (int i = 0; i < 3; ++i)
       momentum[i] += o.momentum[i];
     return *this;
@@ -29,6 +32,7 @@ struct NodeSums
     kinetic += o.kinetic;
     kinetic_mid += o.kinetic_mid;
     external_work += o.external_work;
+    damping_work += o.damping_work;
     for (int i = 0; i < 3; ++i)
       momentum[i] += o.momentum[i];
   }
@@ -44,7 +48,9 @@ struct NodeSums
 /// component without a velocity constraint has impulse 0 and previous impulse 0, so its
 /// external work term (+-0) is skipped: adding +-0 to the sum, which starts at +0, never
 /// changes its bits. With Clear, the node's forces are then set for the next cycle: f_int = 0
-/// and, with Loads, f_ext = m g.
+/// and, with Loads, f_ext = m g. With Damp, the settling stage's mass damping (`damping`,
+/// integrate/MassDamping.hpp) acts on the free components, its impulse kept in
+/// `damping_impulse` and its work booked like the external work.
 struct NodeIntegrator
 {
   VectorView x, v, f_int, f_ext, prev_impulse;
@@ -55,7 +61,9 @@ struct NodeIntegrator
   RealView vbc;    ///< BoundaryConditions::velocity_current
   IndexView owned; ///< empty: every node counts in the sums
   Real dt = 0, half_dt = 0;
-  Real g[3] = {0, 0, 0}; ///< the next cycle's gravity (Clear)
+  Real g[3] = {0, 0, 0};      ///< the next cycle's gravity (Clear)
+  MassDamping damping;        ///< read with Damp only
+  VectorView damping_impulse; ///< last step's damping impulse (Damp) [N s]
 
   /// The sums of a run of nodes, in local variables that no store to x, v or the impulse can
   /// alias: in a NodeSums in memory, every one of their 9 additions a node went through memory
@@ -65,12 +73,12 @@ struct NodeIntegrator
   template <int Dim>
   struct Sums
   {
-    Real external_work[Dim], kinetic[Dim], kinetic_mid[Dim], momentum[Dim];
+    Real external_work[Dim], kinetic[Dim], kinetic_mid[Dim], momentum[Dim], damping_work[Dim];
 
     KOKKOS_INLINE_FUNCTION Sums()
     {
       for (int i = 0; i < Dim; ++i)
-        external_work[i] = kinetic[i] = kinetic_mid[i] = momentum[i] = 0;
+        external_work[i] = kinetic[i] = kinetic_mid[i] = momentum[i] = damping_work[i] = 0;
     }
     /// s plus these partial sums, component 0 first
     KOKKOS_INLINE_FUNCTION void addTo(NodeSums &s) const
@@ -78,6 +86,7 @@ struct NodeIntegrator
       for (int i = 0; i < Dim; ++i)
       {
         s.external_work += external_work[i];
+        s.damping_work += damping_work[i];
         s.kinetic += kinetic[i];
         s.kinetic_mid += kinetic_mid[i];
         s.momentum[i] += momentum[i];
@@ -100,7 +109,8 @@ struct NodeIntegrator
   /// Step 12 on node n, its terms added to s (then step 5 on it, with Clear).
   /// Record: write the reactions (an instantiation of its own, so that runs without velocity
   /// constraints keep the code, and the contracted bits, of the others).
-  template <int Dim, bool Loads, bool Clear, bool Contact = false, bool Record = false>
+  template <int Dim, bool Loads, bool Clear, bool Contact = false, bool Record = false,
+            bool Damp = false>
   KOKKOS_INLINE_FUNCTION void integrate(const Index n, Sums<Dim> &s) const
   {
     const Real m = mass(n);
@@ -111,9 +121,16 @@ struct NodeIntegrator
       const Real v_old = v(n, i);
       const Real fe = Loads ? f_ext(n, i) : Real(0);
       const Real f = (Contact ? f_int(n, i) + f_contact(n, i) : f_int(n, i)) + fe;
-      Real v_new = v_old + f * dt_over_m;
+      Real v_new = Damp ? damping.velocity(v_old, f * dt_over_m) : v_old + f * dt_over_m;
       Real work_force = fe;
       const int k = bc(n, i);
+      if (Damp) // a constrained component is not damped: its constraint sets v^{n+1}
+      {
+        const Real d = k >= 0 ? Real(0) : damping.impulse(m, v_old, v_new);
+        if (counted)
+          s.damping_work[i] += 0.5 * v_old * (d + damping_impulse(n, i));
+        damping_impulse(n, i) = d;
+      }
       if (k >= 0)
       {
         v_new = vbc(k);
@@ -148,12 +165,13 @@ struct NodeIntegrator
   }
 
   /// Nodes begin .. end - 1 in order, their terms added to `sums`.
-  template <int Dim, bool Loads, bool Clear, bool Contact = false, bool Record = false>
+  template <int Dim, bool Loads, bool Clear, bool Contact = false, bool Record = false,
+            bool Damp = false>
   KOKKOS_INLINE_FUNCTION void run(const Index begin, const Index end, NodeSums &sums) const
   {
     Sums<Dim> s;
     for (Index n = begin; n < end; ++n)
-      integrate<Dim, Loads, Clear, Contact, Record>(n, s);
+      integrate<Dim, Loads, Clear, Contact, Record, Damp>(n, s);
     s.addTo(sums);
   }
 };

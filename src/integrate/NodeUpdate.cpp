@@ -28,6 +28,7 @@ NodeIntegrator nodeIntegrator(const NodeFields &nodes, const RealView &velocity_
   k.f_contact = nodes.f_contact;
   k.prev_impulse = nodes.external_impulse;
   k.reaction = nodes.reaction;
+  k.damping_impulse = nodes.damping_impulse;
   k.mass = nodes.mass;
   k.bc = nodes.bc;
   k.vbc = velocity_values;
@@ -51,7 +52,7 @@ constexpr Index kNodeChunk = 256;
 #endif
 
 /// updateNodes() in dimension Dim over all nodes, or over the given runs.
-template <int Dim, bool Loads, bool Clear, bool Contact, bool Record>
+template <int Dim, bool Loads, bool Clear, bool Contact, bool Record, bool Damp = false>
 NodeSums integrateAll(const NodeIntegrator &node, const Index count,
                       const DeviceView<Index *[2]> *given_runs)
 {
@@ -62,7 +63,7 @@ NodeSums integrateAll(const NodeIntegrator &node, const Index count,
     Kokkos::parallel_reduce(
         "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, Index(runs.extent(0))),
         KOKKOS_LAMBDA(const Index r, NodeSums &s) {
-          node.run<Dim, Loads, Clear, Contact, Record>(runs(r, 0), runs(r, 1), s);
+          node.run<Dim, Loads, Clear, Contact, Record, Damp>(runs(r, 0), runs(r, 1), s);
         },
         Kokkos::Sum<NodeSums>(sums));
     return sums;
@@ -71,7 +72,7 @@ NodeSums integrateAll(const NodeIntegrator &node, const Index count,
       "updateNodes", Kokkos::RangePolicy<ExecSpace>(0, (count + kNodeChunk - 1) / kNodeChunk),
       KOKKOS_LAMBDA(const Index chunk, NodeSums &s) {
         const Index begin = chunk * kNodeChunk;
-        node.run<Dim, Loads, Clear, Contact, Record>(
+        node.run<Dim, Loads, Clear, Contact, Record, Damp>(
             begin, count - begin < kNodeChunk ? count : begin + kNodeChunk, s);
       },
       Kokkos::Sum<NodeSums>(sums));
@@ -89,13 +90,31 @@ NodeSums integrateWithContact(const NodeIntegrator &node, const Index count, con
                : integrateAll<Dim, false, false, Contact, Record>(node, count, runs);
 }
 
+/// The settling stage's step 12 (its own instantiations, so that the undamped step keeps its
+/// code): gravity is always on, so always with loads.
+template <int Dim, bool Contact, bool Record>
+NodeSums integrateDamped(const NodeIntegrator &node, const Index count, const bool clear,
+                         const DeviceView<Index *[2]> *runs)
+{
+  return clear ? integrateAll<Dim, true, true, Contact, Record, true>(node, count, runs)
+               : integrateAll<Dim, true, false, Contact, Record, true>(node, count, runs);
+}
+
 template <int Dim>
 NodeSums integrateNodes(const NodeIntegrator &node, const Index count, const bool loads,
-                        const bool clear, const DeviceView<Index *[2]> *runs)
+                        const bool clear, const DeviceView<Index *[2]> *runs, const bool damp)
 {
   // contact forces have their own field, read only where there is one; reactions are
   // recorded only where the deck has velocity constraints
   const bool contact = node.f_contact.extent(0) != 0, record = node.reaction.extent(0) != 0;
+  if (damp)
+  {
+    if (contact)
+      return record ? integrateDamped<Dim, true, true>(node, count, clear, runs)
+                    : integrateDamped<Dim, true, false>(node, count, clear, runs);
+    return record ? integrateDamped<Dim, false, true>(node, count, clear, runs)
+                  : integrateDamped<Dim, false, false>(node, count, clear, runs);
+  }
   if (contact)
     return record ? integrateWithContact<Dim, true, true>(node, count, loads, clear, runs)
                   : integrateWithContact<Dim, true, false>(node, count, loads, clear, runs);
@@ -107,15 +126,17 @@ NodeSums integrateNodes(const NodeIntegrator &node, const Index count, const boo
 
 NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bcs, Real dt, int dim,
                      const IndexView &owned, const bool loads, const Real *next_gravity,
-                     const DeviceView<Index *[2]> *runs)
+                     const DeviceView<Index *[2]> *runs, const MassDamping *damping)
 {
-  const NodeIntegrator node = nodeIntegrator(nodes, bcs.velocity_current, dt, owned, next_gravity);
-  const bool clear = next_gravity != nullptr;
+  NodeIntegrator node = nodeIntegrator(nodes, bcs.velocity_current, dt, owned, next_gravity);
+  const bool clear = next_gravity != nullptr, damp = damping != nullptr;
+  if (damp)
+    node.damping = *damping;
   if (dim == 1)
-    return integrateNodes<1>(node, nodes.count, loads, clear, runs);
+    return integrateNodes<1>(node, nodes.count, loads, clear, runs, damp);
   if (dim == 2)
-    return integrateNodes<2>(node, nodes.count, loads, clear, runs);
-  return integrateNodes<3>(node, nodes.count, loads, clear, runs);
+    return integrateNodes<2>(node, nodes.count, loads, clear, runs, damp);
+  return integrateNodes<3>(node, nodes.count, loads, clear, runs, damp);
 }
 
 NodeSums sweepSums(const NodeSweep &sweep)

@@ -30,11 +30,15 @@ NodeIntegrator nodeIntegrator(const NodeFields &nodes, const RealView &velocity_
 /// with the same bits. With `next_gravity`, the same sweep then does the next cycle's step 5
 /// (zeroForces(nodes, next_gravity, loads)) on each node once its forces are used: the forces
 /// are already in cache, and step 5's own pass over f_int (and f_ext) is saved. With `runs`
-/// (NodeSweep::late_runs) only the nodes of those runs (maybe none), else all of them.
+/// (NodeSweep::late_runs) only the nodes of those runs (maybe none), else all of them. With
+/// `damping` (the settling stage, docs/theory.md 2.4) the free components are damped, their
+/// damping impulse kept in NodeFields::damping_impulse (allocated) and its work summed in
+/// NodeSums::damping_work; `loads` is then taken as true (a settling stage has gravity).
 NodeSums updateNodes(const NodeFields &nodes, const BoundaryConditions &bc, Real dt, int dim,
                      const IndexView &owned = IndexView(), bool loads = true,
                      const Real *next_gravity = nullptr,
-                     const DeviceView<Index *[2]> *runs = nullptr);
+                     const DeviceView<Index *[2]> *runs = nullptr,
+                     const MassDamping *damping = nullptr);
 
 /// \brief The sums of the early nodes of the last step 6 (NodeSweep::block_sums).
 NodeSums sweepSums(const NodeSweep &sweep);

@@ -6,6 +6,7 @@
 /// decomposition. The cycle (driver/Solver.hpp) advances it; nothing in here changes with time
 /// but the fields' values. Set-up is ModelSetup (model/ModelSetup.hpp and the files beside it).
 #include "bc/BoundaryConditions.hpp"
+#include "bc/PartRelease.hpp"
 #include "core/Fields.hpp"
 #include "element/ElementForces.hpp"
 #include "input/Deck.hpp"
@@ -71,6 +72,7 @@ struct Model
   DeviceView<MaterialParams *> materials;
   std::vector<MaterialParams> materials_host;
   BoundaryConditions bc;
+  PartRelease release;           ///< the held parts (parts[].release_time)
   bool external_loads = true;    ///< hasExternalLoads(): steps 5 and 12 handle f_ext
   ElementControls controls;      ///< the deck's element controls (the cycle sets dt and time)
   Real initial_element_step = 0; ///< the elements' h / c in the initial state, this rank [s]

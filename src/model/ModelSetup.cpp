@@ -126,6 +126,7 @@ void ModelSetup::run()
   setupBoundaryConditions();
   _m.external_loads = hasExternalLoads(_m.bc, _m.deck.gravity.data());
   setupContact();
+  setupPartRelease();
   setupNodeSweep();
   setupGauges();
   setupInitialState();
@@ -315,6 +316,8 @@ void ModelSetup::setupFields()
   if (!_m.deck.contact.surfaces.empty())
     _m.nodes.f_contact = VectorView("f_contact", size_t(num_nodes));
   _m.nodes.external_impulse = VectorView("external_impulse", size_t(num_nodes));
+  if (_m.deck.settling.active())
+    _m.nodes.damping_impulse = VectorView("damping_impulse", size_t(num_nodes));
   _m.nodes.mass = RealView("node_mass", size_t(num_nodes));
   _m.nodes.bc = DeviceView<int *[3]>("node_bc", size_t(num_nodes));
 
@@ -586,6 +589,40 @@ void ModelSetup::setupBoundaryConditions()
   _m.bc.pressure_current = RealView("pressure_bc_value", _m.bc.pressure_value.size());
 }
 
+void ModelSetup::setupPartRelease()
+{
+  // a node of several parts is held until the latest of their release times
+  std::vector<Real> hold(size_t(_m.nodes.count), 0);
+  bool any = false;
+  for (const PartSpec &p : _m.deck.parts)
+    any = any || p.release_time > 0;
+  if (!any)
+    return;
+  auto h_conn = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.elems.conn);
+  auto h_part = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.elems.part);
+  for (Index e = 0; e < _m.elems.count; ++e)
+  {
+    const Real t = _m.deck.parts[size_t(_m.part_spec[size_t(h_part(e))])].release_time;
+    for (int a = 0; a < kMaxElementNodes; ++a)
+      if (h_conn(e, a) >= 0)
+        hold[size_t(h_conn(e, a))] = std::max(hold[size_t(h_conn(e, a))], t);
+  }
+  _m.release = holdNodes(hold, _m.deck.dimension, _m.nodes, _m.bc);
+  // every rank has a group for every release time of the deck, some maybe without nodes, so
+  // that the ranks release in the same cycles and reduce what they released together
+  for (const PartSpec &p : _m.deck.parts)
+  {
+    bool known = !(p.release_time > 0);
+    for (const PartRelease::Group &g : _m.release.groups)
+      known = known || g.time == p.release_time;
+    if (known)
+      continue;
+    PartRelease::Group g;
+    g.time = p.release_time;
+    _m.release.groups.push_back(g);
+  }
+}
+
 void ModelSetup::setupInitialState()
 {
   // initial velocity per part; a node merged between parts takes the mass-weighted mean,
@@ -662,6 +699,7 @@ void ModelSetup::setupInitialState()
         h_v(n, i) = v;
       }
   }
+  setReleaseVelocities(_m.release, h_v);
   for (Index n = 0; n < num_nodes; ++n)
     for (int i = 0; i < 3; ++i)
       if (h_bc(n, i) >= 0)

@@ -28,6 +28,7 @@ private:
   void setupBoundaryConditions();
   void setupContact();
   void setupContactGhosts();
+  void setupPartRelease();
   void setupNodeSweep();
   void setupGauges();
   void setupInitialState();

@@ -202,6 +202,11 @@ TEST(SolverDecomposed, JointedWave1DMatchesSerial)
   expectInvariant("jointed wave 1D", "jointed_wave_1d.yaml", 100);
 }
 
+TEST(SolverDecomposed, SettlingAndRelease2DMatchSerial)
+{
+  expectInvariant("settle and release 2D", "settle_release_2d.yaml", 150);
+}
+
 TEST(SolverDecomposed, BlockImpact2DMatchesSerial)
 {
   expectInvariant("block impact 2D", "block_impact_2d.yaml", 50);
