@@ -112,7 +112,8 @@ TEST(ContactErosion, PunchMeetsEveryLayerErosionExposes)
       }
   vy /= n;
   std::printf("[ contact erosion ] %ld eroded, deepest punch node %.3e m in the plate's top "
-              "layer, %.3e m in the layers below, tip at y = %.3e m, punch vy %.1f m/s, balance worst %.3e, "
+              "layer, %.3e m in the layers below, tip at y = %.3e m, punch vy %.1f m/s, balance "
+              "worst %.3e, "
               "momentum y %.4e of %.4e\n",
               end.eroded_elements, deepest_top, deepest, tip, vy, worst_balance, end.momentum[1],
               p0);
