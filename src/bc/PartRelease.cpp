@@ -93,7 +93,7 @@ NodeSums releaseDue(PartRelease &release, const Real t, const NodeFields &nodes,
 {
   NodeSums gained;
   for (PartRelease::Group &g : release.groups)
-    if (!g.released && !(t < g.time))
+    if (g.due(t))
     {
       gained += freeGroup(g, nodes, owned, true);
       g.released = true;
@@ -104,7 +104,7 @@ NodeSums releaseDue(PartRelease &release, const Real t, const NodeFields &nodes,
 void markReleased(PartRelease &release, const Real t, const NodeFields &nodes)
 {
   for (PartRelease::Group &g : release.groups)
-    if (!g.released && !(t < g.time))
+    if (g.due(t))
     {
       freeGroup(g, nodes, IndexView(), false);
       g.released = true;

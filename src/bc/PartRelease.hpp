@@ -23,6 +23,8 @@ struct PartRelease
     std::vector<int> component; ///< its component
     std::vector<Real> velocity; ///< its velocity from the release on [m/s]
     bool released = false;
+    /// Not yet released, and its time reached at time t.
+    bool due(const Real t) const { return !released && !(t < time); }
   };
   std::vector<Group> groups;
 };

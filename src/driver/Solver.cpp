@@ -239,7 +239,7 @@ void Solver::releaseParts()
 {
   bool due = false; // the same on every rank: they have the same groups (ModelSetup)
   for (const PartRelease::Group &g : _m.release.groups)
-    due = due || (!g.released && !(_time < g.time));
+    due = due || g.due(_time);
   if (!due)
     return;
   NodeSums gained =
