@@ -22,7 +22,8 @@ frame, combined into one PNG.
   --out PNG      default OUTDIR/fields_<field>.png
 
 Prints `plot_fields: wrote PNG field NAME range MIN MAX` (SI units, over the drawn frames).
-The fields and their units: README.md, "Pictures".
+The fields and their units: README.md, "Pictures". Eroded elements (the cell field `eroded`
+of a deck whose material erodes) are not drawn.
 Exit status 2 on a bad argument (no fields.h5, unknown field, time outside the frames).
 """
 import argparse
@@ -207,9 +208,17 @@ def select(runs, times):
     return rows
 
 
+def live(frame, values):
+    """`values` without those of eroded elements (cell values of a run whose material erodes)."""
+    eroded = frame["cell_data"].get("eroded")
+    if eroded is None or len(values) != len(eroded):
+        return values
+    return values[eroded[()] == 0]
+
+
 def field_range(runs, rows, getter, signs=(1,)):
-    vals = [s * getter(run.frames[k]) for _, row in rows for run, k in zip(runs, row)
-            for s in signs]
+    vals = [s * live(run.frames[k], getter(run.frames[k])) for _, row in rows
+            for run, k in zip(runs, row) for s in signs]
     lo, hi = min(np.nanmin(v) for v in vals), max(np.nanmax(v) for v in vals)
     return float(lo) + 0.0, float(hi) + 0.0  # + 0.0: no "-0.0" in the printed range
 
@@ -235,6 +244,12 @@ def draw_panel(ax, run, k, name=None, centre="cell", values=None, norm=None, cma
     from matplotlib.tri import Triangulation
     xy = run.frames[k]["coords"][:, :2] / length
     cells = run.cells
+    cell_data = run.frames[k]["cell_data"]
+    if "eroded" in cell_data:  # an eroded element is gone from the body: not drawn
+        live = cell_data["eroded"][()] == 0
+        cells = cells[live]
+        if centre == "cell" and values is not None:
+            values = values[live]
     signs = MIRRORS if mirror else MIRRORS[:1]
     n = len(xy)
     xy_all = np.vstack([xy * s for s in signs])

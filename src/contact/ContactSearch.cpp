@@ -203,6 +203,10 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const SearchData &S, Index i, Index j, c
 template <class Visit>
 KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit &&visit)
 {
+  // an inactive face (an interior face erosion has not exposed, 11.6) is never a candidate:
+  // tested first, so a part's many interior faces cost a load each, not a pair test each
+  if (!S.F.active(i))
+    return;
   const FaceBins &B = S.B;
   Real a[8];
   for (int d = 0; d < 3; ++d)
@@ -231,7 +235,7 @@ KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit
         for (Index q = B.offsets(r); q < q_end; ++q)
         {
           const Index j = B.faces(q);
-          if (j <= i)
+          if (j <= i || !S.F.active(j))
             continue;
           const Real nn = a[3] * B.packed(q, 3) + a[4] * B.packed(q, 4) + a[5] * B.packed(q, 5);
           if (!(nn < kOpposingNormals))

@@ -166,28 +166,24 @@ int faceLocalNode(ElementType t, int f, int i)
 namespace
 {
 
-/// Every face of every element of the parts with `wanted[part]` (all parts when empty), in
-/// (element, local face) order, and how many faces of the same part have the same nodes.
+/// Every face of every element, in (element, local face) order, and how many faces have the
+/// same nodes. Faces are grouped across parts: two parts whose nodes were merged share the faces
+/// between them, and those faces are inside the body, not on its surface.
 struct ElementFaces
 {
   std::vector<HostFace> faces;
-  std::vector<size_t> group_size; ///< per face: the faces with its nodes in its part (itself too)
+  std::vector<size_t> group_size; ///< per face: the faces with its nodes (itself too)
   std::vector<size_t> partner;    ///< per face of a group of two: the other one
 };
 
-ElementFaces elementFaces(const HostMesh &mesh, const std::vector<char> &wanted)
+ElementFaces elementFaces(const HostMesh &mesh)
 {
   ElementFaces out;
-  std::vector<std::pair<int, std::array<Index, kMaxFaceNodes>>> keys;
+  std::vector<std::array<Index, kMaxFaceNodes>> keys;
   Index element = 0;
   for (int p = 0; p < int(mesh.parts.size()); ++p)
   {
     const HostPart &part = mesh.parts[p];
-    if (!wanted.empty() && !wanted[size_t(p)])
-    {
-      element += part.numElements();
-      continue;
-    }
     const int npe = nodesPerElement(part.type), npf = nodesPerFace(part.type);
     for (Index e = 0; e < part.numElements(); ++e, ++element)
       for (int f = 0; f < facesPerElement(part.type); ++f)
@@ -202,10 +198,10 @@ ElementFaces elementFaces(const HostMesh &mesh, const std::vector<char> &wanted)
         std::array<Index, kMaxFaceNodes> key = face.nodes;
         std::sort(key.begin(), key.begin() + npf);
         out.faces.push_back(face);
-        keys.push_back({p, key});
+        keys.push_back(key);
       }
   }
-  // sort a permutation by (part, key), so the faces keep their (element, face) order
+  // sort a permutation by the sorted nodes, so the faces keep their (element, face) order
   std::vector<size_t> perm(keys.size());
   std::iota(perm.begin(), perm.end(), size_t(0));
   auto less = [&](size_t a, size_t b) { return keys[a] < keys[b]; };
@@ -230,7 +226,7 @@ ElementFaces elementFaces(const HostMesh &mesh, const std::vector<char> &wanted)
 
 std::vector<HostFace> extractExternalFaces(const HostMesh &mesh)
 {
-  const ElementFaces all = elementFaces(mesh, {});
+  const ElementFaces all = elementFaces(mesh);
   std::vector<HostFace> out;
   for (size_t i = 0; i < all.faces.size(); ++i)
     if (all.group_size[i] == 1)
@@ -240,10 +236,11 @@ std::vector<HostFace> extractExternalFaces(const HostMesh &mesh)
 
 std::vector<HostFace> interiorFaces(const HostMesh &mesh, const std::vector<char> &parts)
 {
-  const ElementFaces all = elementFaces(mesh, parts);
+  const ElementFaces all = elementFaces(mesh);
   std::vector<HostFace> out;
   for (size_t i = 0; i < all.faces.size(); ++i)
-    if (all.group_size[i] == 2)
+    if (all.group_size[i] == 2 &&
+        (parts[size_t(all.faces[i].part)] || parts[size_t(all.faces[all.partner[i]].part)]))
     {
       HostFace f = all.faces[i];
       f.twin = all.faces[all.partner[i]].element;

@@ -38,14 +38,17 @@ constexpr int facesPerElement(ElementType t)
 /// \brief Local node `i` (0 <= i < nodesPerFace(t)) of local face `f` of an element of type t.
 int faceLocalNode(ElementType t, int f, int i);
 
-/// \brief External faces of every part. A face is external when no other element of the SAME
-/// part has it, so faces between two parts are external for both. Elements are numbered
-/// globally in part order; the result is sorted by element, then local face.
+/// \brief External faces of the mesh: faces no other element has. Parts that do not share nodes
+/// keep all their faces (the faces between two such parts are external for both, the contact's
+/// business); faces between parts whose nodes were merged are inside one body and are not
+/// external. Elements are numbered globally in part order; the result is sorted by element,
+/// then local face.
 std::vector<HostFace> extractExternalFaces(const HostMesh &mesh);
 
-/// \brief The faces two elements of one part share, of the parts with `parts[p]` != 0: each
-/// face once per element (outward for it), with `twin` = the other element. In (element, local
-/// face) order. They are the faces element erosion can expose (docs/theory.md 11.6).
+/// \brief The faces two elements share where either element is of a part with `parts[p]` != 0
+/// (the two may be of merged parts): each face once per element (outward for it), with `twin` =
+/// the other element. In (element, local face) order. They are the faces element erosion can
+/// expose (docs/theory.md 11.6).
 std::vector<HostFace> interiorFaces(const HostMesh &mesh, const std::vector<char> &parts);
 
 /// \brief Merge nodes of the listed parts that lie within `tolerance` (m) of each other

@@ -1,6 +1,8 @@
 // Every deck in inputs/broken/ must be rejected with an InputError that names the deck, the key
 // path and the line. The expected text is the first line of each deck ("# expect: <text>"), so
-// adding a broken deck needs no code change here.
+// adding a broken deck needs no code change here. A deck that parses must be rejected when the
+// model is set up (errors only the mesh can show, such as a surface with no external face).
+#include "driver/Solver.hpp"
 #include "input/Deck.hpp"
 
 #include <gtest/gtest.h>
@@ -48,7 +50,8 @@ TEST_P(BrokenDeck, IsRejectedWithKeyPathAndLine)
   ASSERT_FALSE(expected.empty()) << file << ": first line must be '# expect: <key path> (line N)'";
   try
   {
-    scpdyn::parseDeck(file);
+    const scpdyn::Deck deck = scpdyn::parseDeck(file);
+    scpdyn::Solver solver(deck);
     FAIL() << file << " was accepted; expected an error containing: " << expected;
   }
   catch (const scpdyn::InputError &e)

@@ -110,19 +110,31 @@ TEST(MeshOps, ExternalFacesOfBoxes)
   }
 }
 
-TEST(MeshOps, FacesBetweenPartsAreExternalForBoth)
+TEST(MeshOps, FacesBetweenPartsAreExternalUnlessTheirNodesAreMerged)
 {
-  HostMesh m;
-  appendBlock(m, "a", ElementType::Hex8, {{2, 2, 2}}, {{0, 0, 0}}, {{1, 1, 1}});
-  appendBlock(m, "b", ElementType::Hex8, {{2, 2, 2}}, {{1, 0, 0}}, {{1, 1, 1}});
-  mergeCoincidentNodes(m, {0, 1}, 1e-9); // even with shared nodes, faces stay per part
-  const auto faces = extractExternalFaces(m);
+  auto twoCubes = [](bool merged) {
+    HostMesh m;
+    appendBlock(m, "a", ElementType::Hex8, {{2, 2, 2}}, {{0, 0, 0}}, {{1, 1, 1}});
+    appendBlock(m, "b", ElementType::Hex8, {{2, 2, 2}}, {{1, 0, 0}}, {{1, 1, 1}});
+    if (merged)
+      mergeCoincidentNodes(m, {0, 1}, 1e-9);
+    return m;
+  };
+  // separate bodies: the 4 faces of each part on the interface x = 1 are external for both
+  const HostMesh apart = twoCubes(false);
+  const auto faces = extractExternalFaces(apart);
   EXPECT_EQ(faces.size(), 2u * 24);
   EXPECT_EQ(facesOfParts(faces, {1}).size(), 24u);
   EXPECT_EQ(faces.back().element, 15); // global numbering continues across parts
-  expectOutward(m, faces, 1.0);
-  // the interface x = 1 holds 4 faces of each part
-  EXPECT_EQ(facesInBox(faces, m, {{1, 0, 0}}, {{1, 1, 1}}, 1e-12).size(), 8u);
+  expectOutward(apart, faces, 1.0);
+  EXPECT_EQ(facesInBox(faces, apart, {{1, 0, 0}}, {{1, 1, 1}}, 1e-12).size(), 8u);
+  // one body: the interface is inside it, its 8 faces are not external; the surface is closed
+  const HostMesh joined = twoCubes(true);
+  const auto outer = extractExternalFaces(joined);
+  EXPECT_EQ(outer.size(), 2u * 24 - 8);
+  EXPECT_EQ(facesOfParts(outer, {1}).size(), 20u);
+  EXPECT_TRUE(facesInBox(outer, joined, {{1, 0, 0}}, {{1, 1, 1}}, 1e-12).empty());
+  expectOutward(joined, outer, 2.0);
 }
 
 // The faces erosion can expose (docs/theory.md 11.6): every face two elements of a selected
@@ -149,6 +161,24 @@ TEST(MeshOps, InteriorFacesComeInTwinPairsOfSelectedParts)
   EXPECT_TRUE(interiorFaces(m, {0, 0}).empty());
   for (const HostFace &f : extractExternalFaces(m))
     EXPECT_EQ(f.twin, -1);
+
+  // a part merged to a selected one: the faces between them are interior from both sides, so
+  // erosion on either side exposes the face of the other
+  HostMesh j;
+  appendBlock(j, "a", ElementType::Hex8, {{1, 2, 2}}, {{0, 0, 0}}, {{1, 2, 2}});
+  appendBlock(j, "b", ElementType::Hex8, {{1, 2, 2}}, {{1, 0, 0}}, {{1, 2, 2}});
+  mergeCoincidentNodes(j, {0, 1}, 1e-9);
+  const auto joined = interiorFaces(j, {1, 0});
+  // 1 x 2 x 2 hexes share 4 faces in a, and the parts share the 4 faces at x = 1; the faces
+  // inside b (not selected) are not listed
+  ASSERT_EQ(joined.size(), 2u * (4 + 4));
+  int across = 0;
+  for (const HostFace &f : joined)
+  {
+    across += (f.element < 4) != (f.twin < 4) ? 1 : 0;
+    EXPECT_TRUE(f.element < 4 || f.twin < 4) << f.element << " " << f.twin;
+  }
+  EXPECT_EQ(across, 8);
 }
 
 TEST(MeshOps, MergeRemovesExactlyTheInterfaceNodes)
@@ -165,7 +195,8 @@ TEST(MeshOps, MergeRemovesExactlyTheInterfaceNodes)
   EXPECT_EQ(m.numNodes(), before - 6); // the 6 nodes on x = 1; part c keeps its copies at 1.5
   EXPECT_EQ(m.node_sets["right_of_a"].size(), 6u);
   EXPECT_NO_THROW(checkElements(m));
-  EXPECT_EQ(extractExternalFaces(m).size(), size_t(2 * 8 + 2 * 7 + 2 * 4));
+  // a and b share the 5 faces of x = 1 (now inside one body); c keeps all its faces
+  EXPECT_EQ(extractExternalFaces(m).size(), size_t(2 * 8 + 2 * 7 + 2 * 4 - 2 * 5));
   for (const auto &f : m.face_sets["top"])
     for (int i = 0; i < 2; ++i)
       EXPECT_EQ(m.coords[f.nodes[i]][1], 1.0); // face-set node ids were renumbered
