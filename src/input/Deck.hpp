@@ -5,6 +5,7 @@
 #include "core/InputError.hpp"
 #include "core/Types.hpp"
 #include "material/MaterialSpec.hpp" // materials[]: the material room owns their contents
+#include "mesh/BrickBond.hpp"
 
 #include <array>
 #include <map>
@@ -58,6 +59,7 @@ const char *deckName(HourglassForm f);  ///< viscous | stiffness
 const char *deckName(ScatterMode s);    ///< gather | atomic
 const char *deckName(NodeUpdateMode m); ///< fused | separate
 const char *deckName(ElementType t);    ///< line2 | quad4 | hex8 | tet4
+const char *deckName(BrickBond b);      ///< running | english
 
 /// \brief Piecewise-linear time function (constant beyond its ends).
 struct TimeFunction
@@ -80,8 +82,9 @@ struct MeshSpec
   std::array<Real, 3> brick_size{{0, 0, 0}};
   std::array<int, 3> count{{1, 1, 1}};
   Real stagger = 0.5;
-  int stagger_axis = 0; ///< 0 = x, 1 = y
-  std::string file;     ///< gmsh: path to .msh 4.1 ASCII (relative to the deck)
+  int stagger_axis = 0;                ///< 0 = x, 1 = y
+  BrickBond bond = BrickBond::Running; ///< 3D: english alternates stretcher and header courses
+  std::string file;                    ///< gmsh: path to .msh 4.1 ASCII (relative to the deck)
 };
 
 /// \brief A part's mesh moved as a rigid body: rotated by `angle` about the line through

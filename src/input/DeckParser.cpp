@@ -42,6 +42,7 @@ const char *deckName(ElementType t)
          : t == ElementType::Hex8  ? "hex8"
                                    : "tet4";
 }
+const char *deckName(BrickBond b) { return b == BrickBond::English ? "english" : "running"; }
 
 namespace input_impl
 {

@@ -28,10 +28,33 @@ std::array<Real, 3> positiveVector(const YamlMap &m, const std::string &key, int
   return x;
 }
 
+/// \brief The English bond's rules (docs/input.md, parts[].mesh): a 3D wall two stretchers
+/// thick whose headers span it, so a brick is two widths long; its offsets are its own.
+void checkEnglishBond(const YamlMap &m, const MeshSpec &mesh, int dim)
+{
+  if (dim != 3)
+    m["bond"].fail("bond 'english' needs a 3D wall (header courses span the thickness), but the "
+                   "deck has dimension " +
+                   std::to_string(dim));
+  const int s = mesh.stagger_axis, r = 1 - s;
+  if (mesh.count[size_t(r)] != 2)
+    m["count"].fail("bond 'english' needs exactly 2 rows through the thickness (count along " +
+                    std::string(r == 0 ? "x" : "y") + "), got " +
+                    std::to_string(mesh.count[size_t(r)]));
+  const Real L = mesh.brick_size[size_t(s)], W = mesh.brick_size[size_t(r)];
+  if (!(std::fabs(L - 2 * W) <= 1e-9 * L))
+    m["brick_size"].fail("bond 'english' needs a brick length (" + formatReal(L) +
+                         " m) of twice its width (" + formatReal(W) +
+                         " m), so a header spans the two stretchers");
+  if (m.has("stagger"))
+    m["stagger"].fail("bond 'english' sets its own joint offsets (quarter-brick closers in the "
+                      "header courses); remove stagger");
+}
+
 MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
 {
   const YamlMap m = value.map({"type", "element", "elements", "origin", "size", "brick_size",
-                               "count", "stagger", "stagger_axis", "file"});
+                               "count", "stagger", "stagger_axis", "bond", "file"});
   MeshSpec mesh;
   mesh.type = readChoice(m, "type", {MeshType::Block, MeshType::BrickWall, MeshType::Gmsh},
                          MeshType::Block);
@@ -49,10 +72,10 @@ MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
   if (mesh.type == MeshType::Block)
     restrictKeys(m, {"type", "element", "elements", "origin", "size"}, "mesh type 'block'");
   else
-    restrictKeys(
-        m,
-        {"type", "element", "elements", "origin", "brick_size", "count", "stagger", "stagger_axis"},
-        "mesh type 'brick_wall'");
+    restrictKeys(m,
+                 {"type", "element", "elements", "origin", "brick_size", "count", "stagger",
+                  "stagger_axis", "bond"},
+                 "mesh type 'brick_wall'");
 
   mesh.element = readChoice(
       m, "element", {ElementType::Line2, ElementType::Quad4, ElementType::Hex8, ElementType::Tet4},
@@ -84,6 +107,9 @@ MeshSpec parseMesh(const YamlValue &value, int dim, const fs::path &deck_dir)
                                                             : std::vector<std::string>{"x", "y"});
     mesh.stagger_axis = a == "x" ? 0 : 1;
   }
+  mesh.bond = readChoice(m, "bond", {BrickBond::Running, BrickBond::English}, BrickBond::Running);
+  if (mesh.bond == BrickBond::English)
+    checkEnglishBond(m, mesh, dim);
   return mesh;
 }
 

@@ -69,9 +69,14 @@ void writeMesh(YAML::Emitter &out, const MeshSpec &m, int dim)
   {
     vector(out, "brick_size", m.brick_size, dim);
     vector(out, "count", m.count, dim);
-    out << YAML::Key << "stagger" << YAML::Value;
-    real(out, m.stagger);
+    if (m.bond == BrickBond::Running) // the default: decks without the key read back the same
+    {
+      out << YAML::Key << "stagger" << YAML::Value;
+      real(out, m.stagger);
+    }
     out << YAML::Key << "stagger_axis" << YAML::Value << (m.stagger_axis == 0 ? "x" : "y");
+    if (m.bond != BrickBond::Running)
+      out << YAML::Key << "bond" << YAML::Value << deckName(m.bond);
   }
   out << YAML::EndMap;
 }

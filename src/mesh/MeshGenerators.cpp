@@ -126,10 +126,44 @@ void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
   mesh.parts.push_back(std::move(part));
 }
 
+namespace
+{
+// One header course of an English bond (appendBrickWall): a queen closer of a quarter brick
+// length at each end, full headers between, all spanning both rows.
+void appendHeaderCourse(HostMesh &mesh, const std::string &prefix, ElementType type,
+                        std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
+                        std::array<Real, 3> brick_size, int along, int course, int s)
+{
+  const int r = 1 - s; // across the wall
+  const Real L = brick_size[size_t(s)];
+  // (start, length) in brick lengths along the axis: closers of 1/4, headers of 1/2
+  std::vector<std::pair<Real, Real>> seg;
+  seg.push_back({0, 0.25});
+  for (int k = 0; k + 1 < 2 * along; ++k)
+    seg.push_back({0.25 + 0.5 * k, 0.5});
+  seg.push_back({along - 0.25, 0.25});
+  for (size_t i = 0; i < seg.size(); ++i)
+  {
+    std::array<int, 3> cells = cells_per_brick;
+    cells[size_t(s)] = cells_per_brick[size_t(r)]; // the stretcher turned by 90 degrees
+    cells[size_t(r)] = cells_per_brick[size_t(s)];
+    if (seg[i].second < 0.5)
+      cells[size_t(s)] = std::max(1, int(std::lround(cells_per_brick[size_t(r)] * 0.5)));
+    std::array<Real, 3> o = origin, size = brick_size;
+    o[size_t(s)] = origin[size_t(s)] + L * seg[i].first;
+    o[2] = origin[2] + brick_size[2] * course;
+    size[size_t(s)] = L * seg[i].second;
+    size[size_t(r)] = 2 * brick_size[size_t(r)]; // the thickness of the stretcher courses
+    appendBlock(mesh, prefix + "." + std::to_string(course) + "." + std::to_string(i), type, cells,
+                o, size);
+  }
+}
+} // namespace
+
 void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type,
                      std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
                      std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger,
-                     int stagger_axis)
+                     int stagger_axis, BrickBond bond)
 {
   if (!(stagger >= 0 && stagger < 1))
     throw std::runtime_error("brick wall '" + prefix + "': stagger must lie in [0, 1), got " +
@@ -150,9 +184,24 @@ void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type
   if (along < 1 || courses < 1 || rows < 1)
     throw std::runtime_error("brick wall '" + prefix + "': brick counts must be positive");
   const Real L = brick_size[size_t(s)];
+  const bool english = bond == BrickBond::English;
+  if (english)
+  {
+    const Real W = brick_size[size_t(row_axis)];
+    if (!is3d || rows != 2 || !(std::fabs(L - 2 * W) <= 1e-9 * L))
+      throw std::runtime_error("brick wall '" + prefix +
+                               "': an English bond needs a 3D wall of exactly 2 rows through "
+                               "the thickness and a brick length of 2 brick widths");
+    stagger = 0; // its stretcher courses are not shifted; the closers offset the headers
+  }
 
   for (int c = 0; c < courses; ++c)
   {
+    if (english && c % 2 == 1)
+    {
+      appendHeaderCourse(mesh, prefix, type, cells_per_brick, origin, brick_size, along, c, s);
+      continue;
+    }
     // Segments of the course along the stagger axis as (start offset, length fraction) in
     // brick lengths.
     std::vector<std::pair<Real, Real>> seg;

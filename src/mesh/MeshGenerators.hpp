@@ -8,6 +8,7 @@
 ///   Quad4: counter-clockwise, 0 (-,-), 1 (+,-), 2 (+,+), 3 (-,+).
 ///   Hex8:  bottom face 0-1-2-3 counter-clockwise seen from +z, top face 4-5-6-7 above them.
 ///   Tet4:  positive volume, ((x1-x0) x (x2-x0)) . (x3-x0) > 0.
+#include "mesh/BrickBond.hpp"
 #include "mesh/HostMesh.hpp"
 
 #include <array>
@@ -37,9 +38,18 @@ void appendBlock(HostMesh &mesh, const std::string &name, ElementType type,
 /// along the stagger axis in count[other axis] rows; index = row * (bricks in the course) + i.
 /// 1D (Line2): one course along x. `cells_per_brick` are the cells of a full brick,
 /// `brick_size` its edge lengths (m).
+///
+/// BrickBond::English (3D only, exactly 2 rows, brick length = 2 x brick width, stagger
+/// ignored): even courses (from 0, the base) are stretcher courses as above without shift;
+/// odd courses are header courses, one row of bricks turned 90 degrees about z that span the
+/// whole thickness (2 widths): a queen closer (a quarter brick length along the axis) at each
+/// end and 2 count[axis] - 1 headers between, so no head joint of a header course lies over
+/// one of the stretcher courses next to it. A header has the stretcher's cells turned with
+/// it (cells along the axis and across it swapped); a closer max(1, round(cells / 2)) along
+/// the axis. Header-course bricks are indexed along the axis.
 void appendBrickWall(HostMesh &mesh, const std::string &prefix, ElementType type,
                      std::array<int, 3> cells_per_brick, std::array<Real, 3> origin,
                      std::array<Real, 3> brick_size, std::array<int, 3> count, Real stagger,
-                     int stagger_axis = 0);
+                     int stagger_axis = 0, BrickBond bond = BrickBond::Running);
 
 } // namespace scpdyn

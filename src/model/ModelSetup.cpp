@@ -218,7 +218,7 @@ void ModelSetup::setupMesh()
         appendBlock(_m.mesh, spec.name, m.element, m.elements, m.origin, m.size);
       else if (m.type == MeshType::BrickWall)
         appendBrickWall(_m.mesh, spec.name, m.element, m.elements, m.origin, m.brick_size, m.count,
-                        m.stagger, m.stagger_axis);
+                        m.stagger, m.stagger_axis, m.bond);
       else
       {
         HostMesh g = readGmsh41(m.file);
