@@ -149,7 +149,7 @@ KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool
     for (int k = 0; k < ntri; ++k)
     {
       const Real *p = tri ? x[1] : x[k];
-      const Real *q = tri ? x[2] : x[(k + 1) % nn];
+      const Real *q = tri ? x[2] : x[cp_geometry::nextVertex(k, nn)];
       const Real a[3] = {p[0] - o[0], p[1] - o[1], p[2] - o[2]};
       const Real b[3] = {q[0] - o[0], q[1] - o[1], q[2] - o[2]};
       Real cr[3];

@@ -113,6 +113,7 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
   auto mode = _tie_mode;
   const int dim = _dim, Q = _tie_points;
   const Index rows = cp.count * Q;
+  const NodeAdder add = nodeAdder();
   Kokkos::parallel_for(
       "scpdyn::contact::boundZero", Kokkos::RangePolicy<ExecSpace>(0, Index(used.extent(0))),
       KOKKOS_LAMBDA(const Index i) {
@@ -143,7 +144,7 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
                                    : S(c, d) * b * contact_math::abs(cp.normal(p, d));
                 sum[mode(c) == TieFull ? d : 0] += e;
                 if (!F.ghost(f))
-                  Kokkos::atomic_add(&dv(k, d), e);
+                  add(&dv(k, d), e);
               }
           }
         }

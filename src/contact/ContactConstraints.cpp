@@ -34,6 +34,7 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
   auto used = _faces.nodes_used;
   auto mode = _tie_mode;
   const int dim = _dim, Q = _tie_points;
+  const NodeAdder add = nodeAdder();
   Kokkos::parallel_for(
       "scpdyn::contact::tieZero", Kokkos::RangePolicy<ExecSpace>(0, Index(used.extent(0))),
       KOKKOS_LAMBDA(const Index i) {
@@ -46,7 +47,7 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
         if (mode(c) == TieNone)
           return;
         const Real f[3] = {force(c, 0), force(c, 1), force(c, 2)};
-        rowScatter(F, cp, tw, c, c / Q, f, dv, true, mass, bc, dt, dim);
+        rowScatter(F, cp, tw, c, c / Q, f, dv, true, mass, bc, dt, dim, add);
       });
   if (_comm.sum_nodes) // every copy of a node sees the increments of every rank's CPs
     _comm.sum_nodes(dv);
@@ -65,6 +66,7 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
   const int dim = _dim, Q = _tie_points;
   const Index rows = cp.count * Q;
   auto W = _cg_w;
+  auto diag = _cg_diag;
   Real sums[2] = {0, 0}; // r.z, and the same norm of the face velocities themselves
   Kokkos::parallel_reduce(
       "scpdyn::contact::tieSetup", Kokkos::RangePolicy<ExecSpace>(0, rows),
@@ -74,6 +76,9 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
         Real wv[3] = {W(c, 0), W(c, 1), W(c, 2)};
         project(cp, p, mode(c), dim, r);
         tieDiagonal(F, cp, tw, c, p, mass, bc, dt, dim, D, Dn);
+        for (int d = 0; d < 3; ++d)
+          diag(c, d) = D[d];
+        diag(c, 3) = Dn;
         precondition(cp, p, mode(c), D, Dn, r, z);
         project(cp, p, mode(c), dim, wv);
         precondition(cp, p, mode(c), D, Dn, wv, zv);
@@ -129,15 +134,15 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
         "scpdyn::contact::tieUpdate", Kokkos::RangePolicy<ExecSpace>(0, rows),
         KOKKOS_LAMBDA(const Index c, Real &sum) {
           const Index p = c / Q;
-          Real r[3], z[3], D[3], Dn;
+          Real r[3], z[3];
           for (int d = 0; d < 3; ++d)
           {
             X(c, d) += alpha * Pv(c, d);
             r[d] = R(c, d) - alpha * AP(c, d);
             R(c, d) = r[d];
           }
-          tieDiagonal(F, cp, tw, c, p, mass, bc, dt, dim, D, Dn);
-          precondition(cp, p, mode(c), D, Dn, r, z);
+          const Real D[3] = {diag(c, 0), diag(c, 1), diag(c, 2)};
+          precondition(cp, p, mode(c), D, diag(c, 3), r, z);
           const bool counted = ownsPlane(F, cp, p);
           for (int d = 0; d < 3; ++d)
           {
@@ -175,6 +180,7 @@ void ContactSystem::allocateTieRows()
   _cg_s = VectorView("cg_s", n);
   _cg_t = VectorView("cg_t", n);
   _cg_best = VectorView("cg_best", n);
+  _cg_diag = DeviceView<Real *[4]>("cg_diag", n);
   _tie_mode = IndexView("tie_mode", n);
   _tie.w1 = DeviceView<Real *[kMaxFaceNodes]>("tie_w1", n);
   _tie.w2 = DeviceView<Real *[kMaxFaceNodes]>("tie_w2", n);
@@ -193,6 +199,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   auto mode = _tie_mode;
   const int dim = _dim, Q = _tie_points;
   const Index nused = Index(used.extent(0)), rows = cp.count * Q;
+  const NodeAdder add = nodeAdder();
   // the joint CPs' forces are part of what the constraints see; decomposed: their totals over
   // the ranks (fc holds this rank's faces only), summed in a copy so step 9b still sums parts
   VectorView joint = fc;
@@ -265,7 +272,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
             continue;
           tied = true;
           const Real fr[3] = {X(c, 0), X(c, 1), X(c, 2)};
-          rowScatter(F, cp, tw, c, p, fr, fc, false, mass, bc, dt, dim);
+          rowScatter(F, cp, tw, c, p, fr, fc, false, mass, bc, dt, dim, add);
           for (int d = 0; d < 3; ++d)
             f[d] += fr[d];
         }

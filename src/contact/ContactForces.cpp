@@ -53,6 +53,7 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
   const bool axisym = _axisym;
   const Real half_dt = 0.5 * dt;
   const TieWeights tie = _tie;
+  const NodeAdder add = nodeAdder();
   Kokkos::parallel_for(
       "scpdyn::contact::planeForces", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p) {
@@ -173,7 +174,7 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
           Fv[d] = r.Fn * n[d] + r.Fs[d];
           cp.force(p, d) = Fv[d];
         }
-        scatterForce(F, cp, p, Fv, fc, no_dv, mass, bc, dt, dim);
+        scatterForce(F, cp, p, Fv, fc, no_dv, mass, bc, dt, dim, add);
         cp.stored(p) = scpdyn::storedEnergy(P, s.Fn, s.Fs, s.umax, g.Ac);
         cp.status(p) = s.open ? CpOpen : r.slipped ? CpSlip : CpStick;
         cp.state(p) = s;

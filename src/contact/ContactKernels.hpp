@@ -66,13 +66,38 @@ KOKKOS_INLINE_FUNCTION void cpVelocities(const ContactFaceData &F, const CommonP
   }
 }
 
+/// \brief How the contact kernels add CP and tie-row shares into node arrays: atomic adds, or
+/// plain adds when the execution space runs one thread (nodeAdder()).
+///
+/// The rule: one thread runs a RangePolicy in index order, one index after the other, so plain
+/// adds form the same sums in the same order as the atomics, bit for bit (the element step's
+/// rule for its scatter, element/ElementLaunch.hpp). With threads, or on a GPU, where two CPs of
+/// one node run at once, the adds stay atomic. On one thread the atomics' locked
+/// compare-exchange was a fifth of the CP update (perf/README.md). Guarded by
+/// ContactScatter.* (tests/contact/test_contact_scatter.cpp).
+struct NodeAdder
+{
+  bool plain = false;
+  KOKKOS_INLINE_FUNCTION void operator()(Real *target, Real value) const
+  {
+    if (plain)
+      *target += value;
+    else
+      Kokkos::atomic_add(target, value);
+  }
+};
+
+/// The adder of this process's execution space: plain on one thread, atomic otherwise.
+inline NodeAdder nodeAdder() { return NodeAdder{ExecSpace().concurrency() == 1}; }
+
 /// (17)-(18): -w1 F on the nodes of face 1, +w2 F on face 2; with `dv`, also the velocity
 /// change dt F w / M of every node component that is not prescribed. A ghost face gets nothing:
 /// its own rank computes the same CP and applies that side (parallel rules of 2.2).
 KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonPlaneData &cp,
                                          Index p, const Real Fv[3], const VectorView &fc,
                                          const VectorView &dv, const RealView &mass,
-                                         const DeviceView<int *[3]> &bc, Real dt, int dim)
+                                         const DeviceView<int *[3]> &bc, Real dt, int dim,
+                                         const NodeAdder &add)
 {
   for (int side = 0; side < 2; ++side)
   {
@@ -86,9 +111,9 @@ KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonP
       const Real w = sign * (side == 0 ? cp.w1(p, a) : cp.w2(p, a));
       for (int d = 0; d < dim; ++d)
       {
-        Kokkos::atomic_add(&fc(k, d), w * Fv[d]);
+        add(&fc(k, d), w * Fv[d]);
         if (dv.extent(0) > 0 && bc(k, d) < 0)
-          Kokkos::atomic_add(&dv(k, d), w * Fv[d] * dt / mass(k));
+          add(&dv(k, d), w * Fv[d] * dt / mass(k));
       }
     }
   }

@@ -244,6 +244,9 @@ private:
   VectorView _cg_s;    ///< per tie row: D^(-1/2), the bound solve's scaling
   VectorView _cg_t;    ///< per tie row: scratch of the bound solve
   VectorView _cg_best; ///< per tie row: the bound solve's best iterate (its divergence guard)
+  /// per tie row: the diagonal of the tie operator (tieDiagonal; components 0-2, the normal
+  /// tie's in 3), fixed within a cycle: the conjugate gradients compute it once, not per pass
+  DeviceView<Real *[4]> _cg_diag;
   IndexView _tie_mode; ///< per tie row: which velocity constraint it imposes this cycle
   TieWeights _tie;     ///< per tie row: the face weights at its point (step 9, A-D)
   int _tie_points = 1; ///< tie rows per CP: 2 in 2D (tieWeights2D), else 1

@@ -16,13 +16,17 @@ using namespace contact_math;
 
 KOKKOS_INLINE_FUNCTION Real cross2(Real ax, Real ay, Real bx, Real by) { return ax * by - ay * bx; }
 
+/// The vertex after k of a closed polygon of np vertices: (k + 1) % np without the integer
+/// division, which in the clipping's inner loops cost as much as the arithmetic.
+KOKKOS_INLINE_FUNCTION int nextVertex(int k, int np) { return k + 1 < np ? k + 1 : 0; }
+
 /// \brief Shoelace area and first moments (integral of xi, eta) of a closed polygon.
 KOKKOS_INLINE_FUNCTION void polygonMoments(const Real p[][2], int np, Real &A, Real &Mx, Real &My)
 {
   A = Mx = My = 0;
   for (int k = 0; k < np; ++k)
   {
-    const int l = (k + 1) % np;
+    const int l = nextVertex(k, np);
     const Real w = cross2(p[k][0], p[k][1], p[l][0], p[l][1]);
     A += w;
     Mx += (p[k][0] + p[l][0]) * w;
@@ -58,13 +62,13 @@ KOKKOS_INLINE_FUNCTION bool isConvexCCW(const Real p[][2], int np)
   Real scale = 0;
   for (int k = 0; k < np; ++k)
   {
-    const int l = (k + 1) % np;
+    const int l = nextVertex(k, np);
     scale += (p[l][0] - p[k][0]) * (p[l][0] - p[k][0]) + (p[l][1] - p[k][1]) * (p[l][1] - p[k][1]);
   }
   const Real tol = 1e-12 * scale;
   for (int k = 0; k < np; ++k)
   {
-    const int l = (k + 1) % np, m = (k + 2) % np;
+    const int l = nextVertex(k, np), m = nextVertex(l, np);
     const Real t =
         cross2(p[l][0] - p[k][0], p[l][1] - p[k][1], p[m][0] - p[l][0], p[m][1] - p[l][1]);
     if (t < -tol)
@@ -86,14 +90,14 @@ KOKKOS_INLINE_FUNCTION int clipConvex(const Real subj[][2], int ns, const Real c
   for (int e = 0; e < nc && n > 0; ++e)
   {
     const Real ax = clip[e][0], ay = clip[e][1];
-    const Real ex = clip[(e + 1) % nc][0] - ax, ey = clip[(e + 1) % nc][1] - ay;
+    const int f = nextVertex(e, nc);
+    const Real ex = clip[f][0] - ax, ey = clip[f][1] - ay;
     for (int k = 0; k < n; ++k)
       buf[k][0] = out[k][0], buf[k][1] = out[k][1];
     const int nin = n;
     n = 0;
-    for (int k = 0; k < nin; ++k)
-    {
-      const int j = (k + nin - 1) % nin; // S = previous vertex, E = current vertex
+    for (int k = 0, j = nin - 1; k < nin; j = k++)
+    { // S = previous vertex j, E = current vertex k
       const Real dS = cross2(ex, ey, buf[j][0] - ax, buf[j][1] - ay);
       const Real dE = cross2(ex, ey, buf[k][0] - ax, buf[k][1] - ay);
       // dS - dE cannot vanish below: exactly one of the two is negative
@@ -143,7 +147,7 @@ KOKKOS_INLINE_FUNCTION void splitConvex(const Real poly[][2], int np, ConvexPiec
   cp.count = 0;
   for (int k = 0; k < np; ++k)
   {
-    const int l = (k + 1) % np, m = cp.count;
+    const int l = nextVertex(k, np), m = cp.count;
     cp.p[m][0][0] = poly[k][0], cp.p[m][0][1] = poly[k][1];
     cp.p[m][1][0] = poly[l][0], cp.p[m][1][1] = poly[l][1];
     cp.p[m][2][0] = cx, cp.p[m][2][1] = cy;

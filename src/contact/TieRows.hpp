@@ -62,7 +62,7 @@ KOKKOS_INLINE_FUNCTION void rowScatter(const ContactFaceData &F, const CommonPla
                                        const TieWeights &tw, Index c, Index p, const Real Fv[3],
                                        const VectorView &out, bool dt_over_mass,
                                        const RealView &mass, const DeviceView<int *[3]> &bc,
-                                       Real dt, int dim)
+                                       Real dt, int dim, const contact_kernels::NodeAdder &add)
 {
   for (int side = 0; side < 2; ++side)
   {
@@ -76,9 +76,9 @@ KOKKOS_INLINE_FUNCTION void rowScatter(const ContactFaceData &F, const CommonPla
       const Real w = sign * (side == 0 ? tw.w1(c, a) : tw.w2(c, a));
       for (int d = 0; d < dim; ++d)
         if (!dt_over_mass)
-          Kokkos::atomic_add(&out(k, d), w * Fv[d]);
+          add(&out(k, d), w * Fv[d]);
         else if (bc(k, d) < 0)
-          Kokkos::atomic_add(&out(k, d), w * Fv[d] * dt / mass(k));
+          add(&out(k, d), w * Fv[d] * dt / mass(k));
     }
   }
 }
