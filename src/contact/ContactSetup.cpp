@@ -102,24 +102,20 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   {
     const SurfaceSpec &spec = deck.contact.surfaces[s];
     const std::string key = deck.path + ": contact.surfaces[" + std::to_string(s) + "]";
+    // the interior faces erosion may expose do not count: a part enclosed by the parts merged
+    // to it has nothing to contact with until something erodes
     size_t selected = 0;
     auto take = [&](size_t k) {
-      ++selected;
+      selected += k < n_external ? 1 : 0;
       if (surface_of[k] < 0)
         surface_of[k] = int(s);
     };
     if (!spec.part.empty())
     {
-      // the interior faces erosion may expose do not count: a part enclosed by the parts
-      // merged to it has nothing to contact with until something erodes
-      size_t external = 0;
       for (size_t k = 0; k < faces.size(); ++k)
         if (partMatches(mesh.parts[size_t(faces[k].part)].name, spec.part))
-        {
           take(k);
-          external += k < n_external ? 1 : 0;
-        }
-      if (globalCount(in, external) == 0)
+      if (globalCount(in, selected) == 0)
         throw InputError(key + ".part: no external face belongs to a part matching '" + spec.part +
                          "'");
     }
