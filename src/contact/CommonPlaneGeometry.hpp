@@ -166,51 +166,19 @@ KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool
   return f;
 }
 
-/// \brief Sub-steps B-D for one face pair (section 4). `x1`, `x2`: half-step node positions of
-/// face 1 (smaller global key, 3.5) and face 2; `n1`, `n2` their node counts (1 in 1D, 2 in 2D;
-/// 3 or 4 in 3D; in 1D `x1[1]`, `x2[1]` hold the elements' other nodes, see faceGeometry).
-/// `axisym` selects the per-radian 2D geometry of 4.6 (ignored in 1D and 3D).
-///
-/// 1D: two point faces with opposing normals share the whole 1 m^2 cross-section: Ac = A1p =
-/// A2p = 1 m^2, f1 = f2 = 1, n = n1, x_poc = the midpoint, u0 = (c1 - c2).n (> 0: overlap).
-///
-/// The result is valid whenever both faces have positive area and n1 != n2; Ac may then still be
-/// zero (no overlap). Activity (3.4) is cpIsActive(). Swapping the faces reverses n and leaves
-/// Ac, x_poc and u0 unchanged (to round-off).
+namespace cp_geometry
+{
+/// \brief Sub-steps C-D on the plane of g.n through g.x_cp (4.3-4.8): basis, projected faces,
+/// overlap area Ac and POC, projected areas, area fractions and the closure u0.
 template <int Dim>
-KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1, const Real x2[][3],
-                                                     int n2, bool axisym)
+KOKKOS_INLINE_FUNCTION void projectOnCommonPlane(CpGeometry &g, const Real x1[][3], int n1,
+                                                 const Real x2[][3], int n2, bool ax)
 {
   using namespace contact_math;
-  static_assert(Dim >= 1 && Dim <= 3, "computeCommonPlane: Dim is 1, 2 or 3");
-  CpGeometry g;
-  const bool ax = Dim == 2 && axisym;
-  const FaceGeometry f1 = faceGeometry<Dim>(x1, n1, ax);
-  const FaceGeometry f2 = faceGeometry<Dim>(x2, n2, ax);
-  Real dn[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    g.c1[d] = f1.c[d], g.c2[d] = f2.c[d], g.n1[d] = f1.n[d], g.n2[d] = f2.n[d];
-    g.x_cp[d] = 0.5 * (f1.c[d] + f2.c[d]);
-    dn[d] = f1.n[d] - f2.n[d];
-  }
-  g.A1 = f1.area, g.A2 = f2.area, g.h1 = f1.diameter, g.h2 = f2.diameter;
-  g.Ac = g.A1p = g.A2p = g.f1 = g.f2 = g.u0 = 0;
-  const Real ldn = norm(dn);
-  g.valid = (f1.valid && f2.valid && ldn > 1e-6) ? 1 : 0;
-  for (int d = 0; d < 3; ++d)
-  {
-    g.n[d] = g.valid ? dn[d] / ldn : 0;
-    g.x_poc[d] = g.x_cp[d];
-    g.e1[d] = g.e2[d] = 0;
-  }
-  if (!g.valid)
-    return g;
-
   Real xi_c = 0, eta_c = 0;
   if constexpr (Dim == 1)
   { // the common cross-section; the basis only spans the (unused) shear plane
-    cp_geometry::cpBasis(g.n, g.e1, g.e2);
+    cpBasis(g.n, g.e1, g.e2);
     g.Ac = min(g.A1, g.A2);
     g.A1p = g.A1, g.A2p = g.A2;
   }
@@ -251,7 +219,7 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
   }
   else
   {
-    cp_geometry::cpBasis(g.n, g.e1, g.e2);
+    cpBasis(g.n, g.e1, g.e2);
     Real P[2][4][2];
     const int nv[2] = {n1, n2};
     Real area[2];
@@ -263,15 +231,15 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
         const Real d[3] = {x[i][0] - g.x_cp[0], x[i][1] - g.x_cp[1], x[i][2] - g.x_cp[2]};
         P[f][i][0] = dot(d, g.e1), P[f][i][1] = dot(d, g.e2);
       }
-      area[f] = cp_geometry::polygonSignedArea(P[f], nv[f]);
+      area[f] = polygonSignedArea(P[f], nv[f]);
       if (area[f] < 0) // face 2 projects clockwise (n2 ~ -n)
-        cp_geometry::reversePolygon(P[f], nv[f]), area[f] = -area[f];
+        reversePolygon(P[f], nv[f]), area[f] = -area[f];
     }
     g.A1p = area[0], g.A2p = area[1];
     if (area[0] > 0 && area[1] > 0)
     {
       Real A, Mx, My;
-      cp_geometry::overlapMoments(P[0], n1, P[1], n2, A, Mx, My);
+      overlapMoments(P[0], n1, P[1], n2, A, Mx, My);
       if (A > 0)
       {
         g.Ac = A;
@@ -283,7 +251,123 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
     g.x_poc[d] = g.x_cp[d] + xi_c * g.e1[d] + eta_c * g.e2[d];
   g.f1 = g.A1p > 0 ? min(1.0, g.Ac / g.A1p) : 0;
   g.f2 = g.A2p > 0 ? min(1.0, g.Ac / g.A2p) : 0;
-  g.u0 = cp_geometry::initialClosure(g);
+  g.u0 = initialClosure(g);
+}
+
+/// Cosines of the tilt between the faces (the angle of n1 to -n2), 3 and 10 degrees: below the
+/// first the CP normal is the bisector (D1) for every option; above the second the normal of an
+/// edge or corner contact stands alone; a blend linear in the cosine keeps it continuous.
+constexpr Real kEdgeCosStart = 0.99862953475457387; // cos(3 deg)
+constexpr Real kEdgeCosFull = 0.98480775301220806;  // cos(10 deg)
+
+/// \brief The overlap of faces 1 and 2 along a unit direction t that points from body 1 to
+/// body 2: max over face 1's vertices of x.t minus min over face 2's of x.t (> 0: they overlap
+/// by that much along t; <= 0: t separates them).
+KOKKOS_INLINE_FUNCTION Real overlapAlong(const Real t[3], const Real x1[][3], int n1,
+                                         const Real x2[][3], int n2)
+{
+  using namespace contact_math;
+  Real hi = -1e300, lo = 1e300;
+  for (int i = 0; i < n1; ++i)
+    hi = max(hi, dot(x1[i], t));
+  for (int i = 0; i < n2; ++i)
+    lo = min(lo, dot(x2[i], t));
+  return hi - lo;
+}
+
+/// \brief The normal of an edge or corner contact (4.2). Faces tilted by more than 3 degrees
+/// meet with an edge or a corner of one on the other's face, which pushes along its own normal,
+/// not along the bisector. Of the two face normals t1 = n1 and t2 = -n2, the one along which the
+/// faces overlap less is the receiving face's (the separating-axis test): n is t1 and t2
+/// weighted each by the fourth power of the other's overlap, d2^4 t1 + d1^4 t2 (d clipped at
+/// 0), normalised, so equal overlaps give the bisector and swapping the faces reverses n; then
+/// blended with the bisector g.n by the tilt. False (the bisector stands) below 3 degrees or
+/// when neither normal sees an overlap. The overlaps are of the faces' vertices, not of the
+/// bodies: a face that overlaps along neither normal (a gap) keeps the bisector.
+KOKKOS_INLINE_FUNCTION bool edgeContactNormal(const CpGeometry &g, const Real x1[][3], int n1,
+                                              const Real x2[][3], int n2, Real n_out[3])
+{
+  using namespace contact_math;
+  const Real cos_tilt = -dot(g.n1, g.n2);
+  if (cos_tilt >= kEdgeCosStart)
+    return false;
+  const Real t2[3] = {-g.n2[0], -g.n2[1], -g.n2[2]};
+  const Real d1 = max(0.0, overlapAlong(g.n1, x1, n1, x2, n2));
+  const Real d2 = max(0.0, overlapAlong(t2, x1, n1, x2, n2));
+  if (d1 + d2 <= 0)
+    return false;
+  // the fourth power: a face whose overlap is a third of the other's takes 99 % of the weight
+  const Real r1 = d1 / max(d1, d2), r2 = d2 / max(d1, d2);
+  const Real w1 = r2 * r2 * r2 * r2, w2 = r1 * r1 * r1 * r1;
+  Real t[3];
+  for (int d = 0; d < 3; ++d)
+    t[d] = w1 * g.n1[d] + w2 * t2[d];
+  const Real lt = norm(t);
+  if (!(lt > 0)) // opposite normals with equal weights: no direction to prefer
+    return false;
+  const Real s = min(1.0, (kEdgeCosStart - cos_tilt) / (kEdgeCosStart - kEdgeCosFull));
+  for (int d = 0; d < 3; ++d)
+    n_out[d] = (1 - s) * g.n[d] + s * t[d] / lt;
+  const Real l = norm(n_out);
+  for (int d = 0; d < 3; ++d)
+    n_out[d] /= l;
+  return true;
+}
+} // namespace cp_geometry
+
+/// \brief Sub-steps B-D for one face pair (section 4). `x1`, `x2`: half-step node positions of
+/// face 1 (smaller global key, 3.5) and face 2; `n1`, `n2` their node counts (1 in 1D, 2 in 2D;
+/// 3 or 4 in 3D; in 1D `x1[1]`, `x2[1]` hold the elements' other nodes, see faceGeometry).
+/// `axisym` selects the per-radian 2D geometry of 4.6 (ignored in 1D and 3D).
+///
+/// 1D: two point faces with opposing normals share the whole 1 m^2 cross-section: Ac = A1p =
+/// A2p = 1 m^2, f1 = f2 = 1, n = n1, x_poc = the midpoint, u0 = (c1 - c2).n (> 0: overlap).
+///
+/// The result is valid whenever both faces have positive area and n1 != n2; Ac may then still be
+/// zero (no overlap). Activity (3.4) is cpIsActive(). Swapping the faces reverses n and leaves
+/// Ac, x_poc and u0 unchanged (to round-off).
+template <int Dim>
+KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1, const Real x2[][3],
+                                                     int n2, bool axisym,
+                                                     bool impact_normal = false)
+{
+  using namespace contact_math;
+  static_assert(Dim >= 1 && Dim <= 3, "computeCommonPlane: Dim is 1, 2 or 3");
+  CpGeometry g;
+  const bool ax = Dim == 2 && axisym;
+  const FaceGeometry f1 = faceGeometry<Dim>(x1, n1, ax);
+  const FaceGeometry f2 = faceGeometry<Dim>(x2, n2, ax);
+  Real dn[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    g.c1[d] = f1.c[d], g.c2[d] = f2.c[d], g.n1[d] = f1.n[d], g.n2[d] = f2.n[d];
+    g.x_cp[d] = 0.5 * (f1.c[d] + f2.c[d]);
+    dn[d] = f1.n[d] - f2.n[d];
+  }
+  g.A1 = f1.area, g.A2 = f2.area, g.h1 = f1.diameter, g.h2 = f2.diameter;
+  g.Ac = g.A1p = g.A2p = g.f1 = g.f2 = g.u0 = 0;
+  const Real ldn = norm(dn);
+  g.valid = (f1.valid && f2.valid && ldn > 1e-6) ? 1 : 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    g.n[d] = g.valid ? dn[d] / ldn : 0;
+    g.x_poc[d] = g.x_cp[d];
+    g.e1[d] = g.e2[d] = 0;
+  }
+  if (!g.valid)
+    return g;
+  cp_geometry::projectOnCommonPlane<Dim>(g, x1, n1, x2, n2, ax);
+  if constexpr (Dim >= 2)
+  {
+    Real n_edge[3];
+    if (impact_normal && cp_geometry::edgeContactNormal(g, x1, n1, x2, n2, n_edge))
+    {
+      for (int d = 0; d < 3; ++d)
+        g.n[d] = n_edge[d], g.x_poc[d] = g.x_cp[d], g.e1[d] = g.e2[d] = 0;
+      g.Ac = g.A1p = g.A2p = 0;
+      cp_geometry::projectOnCommonPlane<Dim>(g, x1, n1, x2, n2, ax);
+    }
+  }
   return g;
 }
 

@@ -61,7 +61,8 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
         const JointParams &P = cp.params(p);
         CpState s = cp.state(p);
         Real x1[kMaxFaceNodes][3], x2[kMaxFaceNodes][3];
-        const CpGeometry g = pairGeometry(F, f1, f2, x, v, half_dt, dim, axisym, x1, x2);
+        const CpGeometry g =
+            pairGeometry(F, f1, f2, x, v, half_dt, dim, axisym, x1, x2, usesImpactNormal(P.option));
         // (10): v^n for the explicit option, v* for the options that use m*
         const VectorView &vel = P.option == ContactOption::Explicit ? v : vstar;
         const Real *n = g.valid ? g.n : s.n_old;

@@ -27,6 +27,14 @@ KOKKOS_INLINE_FUNCTION bool isConstraint(ContactOption o)
   return o == ContactOption::SlideLine || o == ContactOption::Sticky || o == ContactOption::Sleepy;
 }
 
+/// The option that stops impacts between faces at an angle takes the normal of an edge or
+/// corner contact (docs/theory.md 4.2); the joint options and the ties keep the bisector (D1),
+/// which is what a joint between near-parallel faces needs.
+KOKKOS_INLINE_FUNCTION bool usesImpactNormal(ContactOption o)
+{
+  return o == ContactOption::SlideLine;
+}
+
 /// Velocity of face f weighted by row `row` of `w` (a View (row, face node)).
 template <class Weights>
 KOKKOS_INLINE_FUNCTION void faceVelocityWith(const ContactFaceData &F, Index f, const Weights &w,

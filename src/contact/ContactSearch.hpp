@@ -81,10 +81,12 @@ KOKKOS_INLINE_FUNCTION void gatherBackNode(const ContactFaceData &F, Index f, co
 
 /// \brief Sub-steps A-D for the face pair (f1, f2) in dimension `dim` (1, 2 or 3); `x1`, `x2`
 /// receive the half-step node positions (1D: and the elements' other nodes in slot 1).
+/// `impact_normal`: the CP normal of an edge or corner contact (computeCommonPlane), for the
+/// option that stops impacts (usesImpactNormal()).
 KOKKOS_INLINE_FUNCTION CpGeometry pairGeometry(const ContactFaceData &F, Index f1, Index f2,
                                                const VectorView &x, const VectorView &v,
                                                Real half_dt, int dim, bool axisym, Real x1[][3],
-                                               Real x2[][3])
+                                               Real x2[][3], bool impact_normal = false)
 {
   const int n1 = gatherHalfStep(F, f1, x, v, half_dt, x1);
   const int n2 = gatherHalfStep(F, f2, x, v, half_dt, x2);
@@ -94,8 +96,8 @@ KOKKOS_INLINE_FUNCTION CpGeometry pairGeometry(const ContactFaceData &F, Index f
     gatherBackNode(F, f2, x, v, half_dt, x2);
     return computeCommonPlane<1>(x1, n1, x2, n2, false);
   }
-  return dim == 2 ? computeCommonPlane<2>(x1, n1, x2, n2, axisym)
-                  : computeCommonPlane<3>(x1, n1, x2, n2, axisym);
+  return dim == 2 ? computeCommonPlane<2>(x1, n1, x2, n2, axisym, impact_normal)
+                  : computeCommonPlane<3>(x1, n1, x2, n2, axisym, impact_normal);
 }
 
 /// \brief Face geometry at x^{n+1/2} = x + dt/2 v for every contact face; sets h_max.

@@ -128,11 +128,12 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
           return;
         }
         Real x1[kMaxFaceNodes][3], x2[kMaxFaceNodes][3];
-        const CpGeometry g = pairGeometry(F, f1, f2, x, v, half_dt, dim, axisym, x1, x2);
+        const bool impact = contact_kernels::usesImpactNormal(cp.params(q).option);
+        const CpGeometry g = pairGeometry(F, f1, f2, x, v, half_dt, dim, axisym, x1, x2, impact);
         // (D7) at x^n, not at the half step: the step's closure increment (7) or (20) takes
         // u from the start to the end of the step, so the half-step overlap would count
         // Vn dt/2 twice (see docs/theory.md, contact runtime)
-        const CpGeometry g0 = pairGeometry(F, f1, f2, x, v, 0.0, dim, axisym, x1, x2);
+        const CpGeometry g0 = pairGeometry(F, f1, f2, x, v, 0.0, dim, axisym, x1, x2, impact);
         Real u0 = g0.u0;
         if (!g0.valid)
         {
