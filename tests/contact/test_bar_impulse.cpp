@@ -16,46 +16,18 @@ using namespace scpdyn::test;
 namespace
 {
 
-// Bar: L = 2 m, square section b = 0.03 m (50 x 1 x 1 hex8), elastic steel, axis at beta = 30
-// deg to the wall normal (60 deg to the wall), moving along its axis at 10 m/s, its leading
-// edge 1 mm from the wall. Wall: 0.1 m thick, every node held. Frictionless slide lines.
-// The end face's size bounds where on it the load may act: a lever-arm error of at most
+// The deck inputs/examples/bar_oblique_fixed_wall.yaml: a bar L = 2 m of square section
+// b = 0.03 m (50 x 1 x 1 hex8), elastic steel, its axis at beta = 30 deg to the wall normal +x
+// (60 deg to the wall), moving along its axis at 10 m/s, its leading edge 1 mm from the wall;
+// the wall 0.1 m thick, every node held; frictionless slide lines. The end face's size bounds
+// where on it the load may act: a lever-arm error of at most
 // (b/2) cos(beta) / ((L/2) sin(beta)) = 2.6 %, within the 3 % the check allows.
 constexpr double kL = 2.0, kB = 0.03, kBeta = 30.0 * M_PI / 180, kSpeed = 10.0;
 constexpr double kMass = 7850 * kL * kB * kB; ///< the bar's mass [kg]
 
 std::string barDeck()
 {
-  const double lead = 0.001 + 0.5 * kB * std::sin(kBeta); // the leading edge 1 mm off
-  char yaml[2400];
-  std::snprintf(yaml, sizeof yaml, R"(dimension: 3
-time: {end: 1.5e-3, courant: 0.5}
-materials:
-  - {name: steel, model: elastic, density: 7850, youngs_modulus: 200.0e9, poisson_ratio: 0.29}
-parts:
-  - name: wall
-    material: steel
-    mesh: {type: block, element: hex8, elements: [2, 10, 4], origin: [-0.1, -0.25, -0.1], size: [0.1, 0.5, 0.2]}
-  - name: bar
-    material: steel
-    mesh: {type: block, element: hex8, elements: [50, 1, 1], origin: [0, %.9g, %.9g], size: [%.9g, %.9g, %.9g]}
-    rotate: {angle: 30, axis: [0, 0, 1]}
-    translate: [%.12g, 0, 0]
-    initial_velocity: [%.12g, %.12g, 0]
-node_sets:
-  - {name: wall_nodes, part: wall}
-boundary_conditions:
-  - {type: velocity, node_set: wall_nodes, component: x, value: 0}
-  - {type: velocity, node_set: wall_nodes, component: y, value: 0}
-  - {type: velocity, node_set: wall_nodes, component: z, value: 0}
-contact:
-  surfaces:
-    - {name: bar, part: bar, option: slide_line}
-    - {name: wall, part: wall, option: slide_line}
-)",
-                -kB / 2, -kB / 2, kL, kB, kB, lead, -kSpeed * std::cos(kBeta),
-                -kSpeed * std::sin(kBeta));
-  return yaml;
+  return readText(std::string(SCPDYN_SOURCE_DIR) + "/inputs/examples/bar_oblique_fixed_wall.yaml");
 }
 
 /// The bar's mass, momentum, centroid and angular momentum about it (host copy; the bar's
