@@ -257,6 +257,87 @@ KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit
 
 } // namespace
 
+void listPlaneFaces(const ContactFaceData &F, const IndexView &face1, const IndexView &face2,
+                    Index count, PlaneFaceGeometry &G)
+{
+  if (G.of_count == count && G.of_face1.data() == face1.data())
+    return;
+  const Index nf = F.count;
+  if (G.slot.extent(0) != size_t(nf))
+    G.slot = IndexView("cp_face_slot", size_t(nf));
+  auto slot = G.slot;
+  Kokkos::deep_copy(slot, 0);
+  // flags first: every CP marks its two faces (writes of the same value)
+  Kokkos::parallel_for(
+      "cpFaceFlag", Kokkos::RangePolicy<ExecSpace>(0, count), KOKKOS_LAMBDA(const Index p) {
+        slot(face1(p)) = 1;
+        slot(face2(p)) = 1;
+      });
+  Index m = 0;
+  Kokkos::parallel_reduce(
+      "cpFaceCount", Kokkos::RangePolicy<ExecSpace>(0, nf),
+      KOKKOS_LAMBDA(const Index f, Index &n) { n += slot(f); }, m);
+  if (G.faces.extent(0) != size_t(m))
+  {
+    G.faces = IndexView("cp_faces", size_t(m));
+    G.xh = DeviceView<Real *[kMaxFaceNodes][3]>("cp_face_xh", size_t(m));
+    G.centroid = VectorView("cp_face_centroid", size_t(m));
+    G.normal = VectorView("cp_face_normal", size_t(m));
+    G.area = RealView("cp_face_area", size_t(m));
+    G.diameter = RealView("cp_face_diameter", size_t(m));
+    G.valid = IndexView("cp_face_valid", size_t(m));
+  }
+  auto faces = G.faces;
+  // then the slots in ascending face order; the final pass reads each flag before its own write
+  Kokkos::parallel_scan(
+      "cpFaceList", Kokkos::RangePolicy<ExecSpace>(0, nf),
+      KOKKOS_LAMBDA(const Index f, Index &offset, const bool final) {
+        const Index flag = slot(f);
+        if (final)
+        {
+          if (flag)
+            faces(offset) = f;
+          slot(f) = flag ? offset : -1;
+        }
+        offset += flag;
+      });
+  G.count = m;
+  G.of_face1 = face1;
+  G.of_count = count;
+}
+
+void computePlaneFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real dt, int dim,
+                              bool axisym, const PlaneFaceGeometry &G)
+{
+  auto x = nodes.x, v = nodes.v;
+  const Real half_dt = 0.5 * dt;
+  // what pairGeometry() does for each face of a pair, once per face
+  Kokkos::parallel_for(
+      "cpFaceGeom", Kokkos::RangePolicy<ExecSpace>(0, G.count), KOKKOS_LAMBDA(const Index q) {
+        const Index f = G.faces(q);
+        Real xh[kMaxFaceNodes][3];
+        const int nn = gatherHalfStep(F, f, x, v, half_dt, xh);
+        if (dim == 1)
+          gatherBackNode(F, f, x, v, half_dt, xh);
+        const bool ax = dim == 2 && axisym;
+        const FaceGeometry g = dim == 1   ? faceGeometry<1>(xh, nn, false)
+                               : dim == 2 ? faceGeometry<2>(xh, nn, ax)
+                                          : faceGeometry<3>(xh, nn, ax);
+        const int slots = dim == 1 ? 2 : nn;
+        for (int a = 0; a < slots; ++a)
+          for (int d = 0; d < 3; ++d)
+            G.xh(q, a, d) = xh[a][d];
+        for (int d = 0; d < 3; ++d)
+        {
+          G.centroid(q, d) = g.c[d];
+          G.normal(q, d) = g.n[d];
+        }
+        G.area(q) = g.area;
+        G.diameter(q) = g.diameter;
+        G.valid(q) = g.valid;
+      });
+}
+
 void computeFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real dt, int dim,
                          bool axisym, FaceGeometryData &G)
 {
