@@ -177,19 +177,16 @@ KOKKOS_INLINE_FUNCTION FaceGeometry faceGeometry(const Real x[][3], int nn, bool
 /// The result is valid whenever both faces have positive area and n1 != n2; Ac may then still be
 /// zero (no overlap). Activity (3.4) is cpIsActive(). Swapping the faces reverses n and leaves
 /// Ac, x_poc and u0 unchanged (to round-off).
-///
-/// `f1`, `f2`: faceGeometry<Dim>(x1, n1, Dim == 2 && axisym) and the same of face 2, computed
-/// by the caller (step 9 computes each face's once per cycle, not once per CP of the face);
-/// computeCommonPlane() below computes them here.
 template <int Dim>
-KOKKOS_INLINE_FUNCTION CpGeometry commonPlaneOfFaces(const Real x1[][3], int n1, const Real x2[][3],
-                                                     int n2, bool axisym, const FaceGeometry &f1,
-                                                     const FaceGeometry &f2)
+KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1, const Real x2[][3],
+                                                     int n2, bool axisym)
 {
   using namespace contact_math;
   static_assert(Dim >= 1 && Dim <= 3, "computeCommonPlane: Dim is 1, 2 or 3");
   CpGeometry g;
   const bool ax = Dim == 2 && axisym;
+  const FaceGeometry f1 = faceGeometry<Dim>(x1, n1, ax);
+  const FaceGeometry f2 = faceGeometry<Dim>(x2, n2, ax);
   Real dn[3];
   for (int d = 0; d < 3; ++d)
   {
@@ -288,17 +285,6 @@ KOKKOS_INLINE_FUNCTION CpGeometry commonPlaneOfFaces(const Real x1[][3], int n1,
   g.f2 = g.A2p > 0 ? min(1.0, g.Ac / g.A2p) : 0;
   g.u0 = cp_geometry::initialClosure(g);
   return g;
-}
-
-/// \brief Sub-steps B-D with both face geometries computed here (commonPlaneOfFaces()).
-template <int Dim>
-KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1, const Real x2[][3],
-                                                     int n2, bool axisym)
-{
-  const bool ax = Dim == 2 && axisym;
-  const FaceGeometry f1 = faceGeometry<Dim>(x1, n1, ax);
-  const FaceGeometry f2 = faceGeometry<Dim>(x2, n2, ax);
-  return commonPlaneOfFaces<Dim>(x1, n1, x2, n2, axisym, f1, f2);
 }
 
 /// \brief Shape-function weights of the point of contact on one face (8.2): the face and the POC

@@ -51,12 +51,9 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
   const VectorView no_dv;
   const int dim = _dim, Q = _tie_points;
   const bool axisym = _axisym;
+  const Real half_dt = 0.5 * dt;
   const TieWeights tie = _tie;
   const NodeAdder add = nodeAdder();
-  // sub-step A and the face part of B (4.1) once per face, not once per CP of the face
-  listPlaneFaces(F, cp.face1, cp.face2, cp.count, _plane_faces);
-  computePlaneFaceGeometry(F, nodes, dt, dim, axisym, _plane_faces);
-  const PlaneFaceGeometry G = _plane_faces;
   Kokkos::parallel_for(
       "scpdyn::contact::planeForces", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p) {
@@ -64,7 +61,7 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
         const JointParams &P = cp.params(p);
         CpState s = cp.state(p);
         Real x1[kMaxFaceNodes][3], x2[kMaxFaceNodes][3];
-        const CpGeometry g = pairGeometryOf(F, G, f1, f2, dim, axisym, x1, x2);
+        const CpGeometry g = pairGeometry(F, f1, f2, x, v, half_dt, dim, axisym, x1, x2);
         // (10): v^n for the explicit option, v* for the options that use m*
         const VectorView &vel = P.option == ContactOption::Explicit ? v : vstar;
         const Real *n = g.valid ? g.n : s.n_old;

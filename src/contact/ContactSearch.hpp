@@ -98,63 +98,6 @@ KOKKOS_INLINE_FUNCTION CpGeometry pairGeometry(const ContactFaceData &F, Index f
                   : computeCommonPlane<3>(x1, n1, x2, n2, axisym);
 }
 
-/// \brief The half-step geometry of the faces that are in CPs, once per face and cycle (step 9).
-/// A face is in ~2 CPs of a jointed mass (~5.4 CPs per brick, 6 faces): the per-CP kernel reads
-/// its half-step nodes and faceGeometry() from here instead of gathering and recomputing them
-/// per CP. Indexed by slot; `slot` maps a face id to its slot (-1: in no CP).
-struct PlaneFaceGeometry
-{
-  IndexView faces; ///< the faces of the CPs, ascending, each once (the slot order)
-  IndexView slot;  ///< per contact face: its slot, or -1
-  Index count = 0;
-  /// half-step node positions x + dt/2 v; 1D: slot 1 holds the element's other node
-  DeviceView<Real *[kMaxFaceNodes][3]> xh;
-  VectorView centroid, normal;
-  RealView area, diameter;
-  IndexView valid;
-  IndexView of_face1; ///< the CP list this was built for (cp.face1, held: its address is unique)
-  Index of_count = -1;
-};
-
-/// \brief List the faces of CPs (face1, face2 of count CPs) into G, when the CP list is not the
-/// one G was built for (after a search, a restore, or the first time step's throwaway search).
-void listPlaneFaces(const ContactFaceData &F, const IndexView &face1, const IndexView &face2,
-                    Index count, PlaneFaceGeometry &G);
-
-/// \brief Half-step positions and faceGeometry() of every face listed in G.
-void computePlaneFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real dt, int dim,
-                              bool axisym, const PlaneFaceGeometry &G);
-
-/// \brief pairGeometry() from the per-face results of computePlaneFaceGeometry(): the same
-/// arithmetic on the same inputs, so the same bits (ContactPlaneFaces.*).
-KOKKOS_INLINE_FUNCTION CpGeometry pairGeometryOf(const ContactFaceData &F,
-                                                 const PlaneFaceGeometry &G, Index f1, Index f2,
-                                                 int dim, bool axisym, Real x1[][3], Real x2[][3])
-{
-  FaceGeometry fg[2];
-  int nn[2];
-  for (int side = 0; side < 2; ++side)
-  {
-    const Index f = side == 0 ? f1 : f2;
-    const Index q = G.slot(f);
-    Real(*xh)[3] = side == 0 ? x1 : x2;
-    nn[side] = F.num_nodes(f);
-    const int slots = dim == 1 ? 2 : nn[side];
-    for (int a = 0; a < slots; ++a)
-      for (int d = 0; d < 3; ++d)
-        xh[a][d] = G.xh(q, a, d);
-    for (int d = 0; d < 3; ++d)
-      fg[side].c[d] = G.centroid(q, d), fg[side].n[d] = G.normal(q, d);
-    fg[side].area = G.area(q);
-    fg[side].diameter = G.diameter(q);
-    fg[side].valid = int(G.valid(q));
-  }
-  if (dim == 1)
-    return commonPlaneOfFaces<1>(x1, nn[0], x2, nn[1], false, fg[0], fg[1]);
-  return dim == 2 ? commonPlaneOfFaces<2>(x1, nn[0], x2, nn[1], axisym, fg[0], fg[1])
-                  : commonPlaneOfFaces<3>(x1, nn[0], x2, nn[1], axisym, fg[0], fg[1]);
-}
-
 /// \brief Face geometry at x^{n+1/2} = x + dt/2 v for every contact face; sets h_max.
 void computeFaceGeometry(const ContactFaceData &F, const NodeFields &nodes, Real dt, int dim,
                          bool axisym, FaceGeometryData &G);

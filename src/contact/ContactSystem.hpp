@@ -223,7 +223,6 @@ private:
   std::vector<std::string> _surface_labels; ///< per surface: "'name' (option o)", for messages
   CommonPlaneData _cp;
   FaceGeometryData _geom;
-  PlaneFaceGeometry _plane_faces; ///< step 9: the half-step geometry of the faces of the CPs
   FaceBins _bins;
   long _binned_cycle = -1;
   bool _has_constraints = false, _has_explicit = false;
