@@ -80,42 +80,55 @@ KOKKOS_INLINE_FUNCTION bool isConvexCCW(const Real p[][2], int np)
 /// \brief Sutherland-Hodgman: clip `subj` by the convex CCW polygon `clip` (section 4.4 step 3).
 /// Keeps the part left of every clip edge. Returns the vertex count of `out` (0 if empty).
 /// Capacity: ns + nc <= kMaxPolyVerts (each convex half-plane cut adds at most one vertex).
+///
+/// Each vertex's side of the edge is computed once per edge (every vertex is the E of one step
+/// and the S of the next: the same product, so the same bits as computing it twice), and the
+/// passes alternate between `out` and a local buffer, ending in `out`, instead of copying the
+/// polygon before every edge: the clip is the largest share of the CP geometry.
 KOKKOS_INLINE_FUNCTION int clipConvex(const Real subj[][2], int ns, const Real clip[][2], int nc,
                                       Real out[][2])
 {
   Real buf[kMaxPolyVerts][2];
+  Real side[kMaxPolyVerts];
+  // the first pass writes to `out` when nc is odd, so that the last one does
+  const Real(*src)[2] = subj;
+  Real(*dst)[2] = nc % 2 == 1 ? out : buf;
   int n = ns;
-  for (int k = 0; k < ns; ++k)
-    out[k][0] = subj[k][0], out[k][1] = subj[k][1];
   for (int e = 0; e < nc && n > 0; ++e)
   {
     const Real ax = clip[e][0], ay = clip[e][1];
     const int f = nextVertex(e, nc);
     const Real ex = clip[f][0] - ax, ey = clip[f][1] - ay;
-    for (int k = 0; k < n; ++k)
-      buf[k][0] = out[k][0], buf[k][1] = out[k][1];
     const int nin = n;
+    for (int k = 0; k < nin; ++k)
+      side[k] = cross2(ex, ey, src[k][0] - ax, src[k][1] - ay);
     n = 0;
     for (int k = 0, j = nin - 1; k < nin; j = k++)
     { // S = previous vertex j, E = current vertex k
-      const Real dS = cross2(ex, ey, buf[j][0] - ax, buf[j][1] - ay);
-      const Real dE = cross2(ex, ey, buf[k][0] - ax, buf[k][1] - ay);
+      const Real dS = side[j], dE = side[k];
       // dS - dE cannot vanish below: exactly one of the two is negative
       if ((dE >= 0) != (dS >= 0) && n < kMaxPolyVerts)
       {
         const Real t = dS / (dS - dE);
-        out[n][0] = buf[j][0] + t * (buf[k][0] - buf[j][0]);
-        out[n][1] = buf[j][1] + t * (buf[k][1] - buf[j][1]);
+        dst[n][0] = src[j][0] + t * (src[k][0] - src[j][0]);
+        dst[n][1] = src[j][1] + t * (src[k][1] - src[j][1]);
         ++n;
       }
       if (dE >= 0 && n < kMaxPolyVerts)
       {
-        out[n][0] = buf[k][0], out[n][1] = buf[k][1];
+        dst[n][0] = src[k][0], dst[n][1] = src[k][1];
         ++n;
       }
     }
+    src = dst;
+    dst = dst == out ? buf : out;
   }
-  return n < 3 ? 0 : n;
+  if (n < 3)
+    return 0;
+  if (src != out) // no clip edge (nc = 0)
+    for (int k = 0; k < n; ++k)
+      out[k][0] = src[k][0], out[k][1] = src[k][1];
+  return n;
 }
 
 /// \brief A polygon as a signed sum of convex pieces: itself if convex, else its fan triangles
