@@ -39,7 +39,7 @@ SZZ = 5  # sigma_zz in the Tensor6 order of fields.h5
 
 
 def deck_facts(path):
-    """Wall height, course height, brick footprint, density, settling end and bar release."""
+    """Wall height, course height and count, origin, density, settling end, bar release and speed."""
     with open(path) as f:
         deck = yaml.safe_load(f)
     parts = {p["name"]: p for p in deck["parts"]}
@@ -47,9 +47,7 @@ def deck_facts(path):
     rho = {m["name"]: m["density"] for m in deck["materials"]}[parts["wall"]["material"]]
     h = wall["brick_size"][2]
     courses = wall["count"][2]
-    return dict(H=h * courses, h=h, courses=courses, origin=wall.get("origin", [0, 0, 0]),
-                length=wall["brick_size"][0] * wall["count"][0],
-                thickness=wall["brick_size"][1] * wall["count"][1], rho=rho,
+    return dict(H=h * courses, h=h, courses=courses, origin=wall.get("origin", [0, 0, 0]), rho=rho,
                 settle=deck["settling"]["end"], release=bar["release_time"],
                 speed=float(np.linalg.norm(bar["initial_velocity"])))
 
@@ -160,9 +158,7 @@ def main():
           f"{worst[2] / worst[3] - 1:+.4f}")
     m = pu.read_csv(os.path.join(out, "matsum.csv"))
     k = int(np.argmin(abs(m["time"] - d["settle"])))
-    mass = summary["parts"]["wall"]["mass"] if "wall" in summary.get("parts", {}) else None
-    mass = mass or d["rho"] * d["H"] * d["length"] * d["thickness"]
-    pe = mass * G * d["H"] / 2
+    pe = summary["preflight"]["parts"]["wall"]["mass"] * G * d["H"] / 2
     print(f"  wall kinetic / potential energy at t = {m['time'][k]:.4f} s: "
           f"{m['wall:kinetic'][k] / pe:.3e}")
 

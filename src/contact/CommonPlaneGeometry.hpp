@@ -356,18 +356,15 @@ KOKKOS_INLINE_FUNCTION CpGeometry computeCommonPlane(const Real x1[][3], int n1,
   }
   if (!g.valid)
     return g;
-  cp_geometry::projectOnCommonPlane<Dim>(g, x1, n1, x2, n2, ax);
   if constexpr (Dim >= 2)
-  {
+  { // the edge-contact normal needs only the face normals and vertices: chosen before the
+    // projection, which then runs once on the plane it defines
     Real n_edge[3];
     if (impact_normal && cp_geometry::edgeContactNormal(g, x1, n1, x2, n2, n_edge))
-    {
       for (int d = 0; d < 3; ++d)
-        g.n[d] = n_edge[d], g.x_poc[d] = g.x_cp[d], g.e1[d] = g.e2[d] = 0;
-      g.Ac = g.A1p = g.A2p = 0;
-      cp_geometry::projectOnCommonPlane<Dim>(g, x1, n1, x2, n2, ax);
-    }
+        g.n[d] = n_edge[d];
   }
+  cp_geometry::projectOnCommonPlane<Dim>(g, x1, n1, x2, n2, ax);
   return g;
 }
 
