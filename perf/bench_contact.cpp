@@ -82,6 +82,7 @@ JointedGrid makeGrid(int dim, int n)
   F.element = IndexView("grid_face_element", size_t(num_faces));
   F.surface = IndexView("grid_face_surface", size_t(num_faces));
   F.mass = RealView("grid_face_mass", size_t(num_faces));
+  F.depth = RealView("grid_face_depth", size_t(num_faces));
   F.rigid = IndexView("grid_face_rigid", size_t(num_faces));
   F.params = DeviceView<JointParams *>("grid_params", 1);
   F.nodes_used = IndexView("grid_nodes_used", size_t(num_nodes));
@@ -112,6 +113,7 @@ JointedGrid makeGrid(int dim, int n)
   Kokkos::deep_copy(F.element, he);
   Kokkos::deep_copy(F.key, hk);
   Kokkos::deep_copy(F.mass, 1.0);
+  Kokkos::deep_copy(F.depth, h); // a cell's thickness behind each face
   auto hp = Kokkos::create_mirror_view(F.params);
   hp(0) = jointParamsOf(SurfaceSpec{}, 0);
   Kokkos::deep_copy(F.params, hp);

@@ -91,11 +91,16 @@ KOKKOS_INLINE_FUNCTION int checkCp(const JointParams &p, const CpState &s, const
 }
 
 /// \brief Penetration a candidate pair may have and stay a candidate (rule 5 of 3.2, delta_pen):
-/// half the smaller face plus the closure the divergence test still accepts, so a joint closed
-/// by more than half a face (a fine mesh, a soft joint) keeps its CP [m].
-KOKKOS_INLINE_FUNCTION Real candidatePenetration(Real h1, Real h2, Real a)
+/// half the smallest of the two face diameters `h` and the two element depths `d` behind them
+/// (ContactFaceData::depth), plus the closure the divergence test still accepts, so a joint
+/// closed by more than that (a fine mesh, a soft joint) keeps its CP [m]. The depths keep a
+/// face from pairing with the far face of its neighbour in a layer of flat elements (a brick
+/// course one element high: one element's bottom and the next one's top overlap by the whole
+/// thickness, less than half their diameter).
+KOKKOS_INLINE_FUNCTION Real candidatePenetration(Real h1, Real h2, Real d1, Real d2, Real a)
 {
-  return 0.5 * contact_math::min(h1, h2) + kDivergedClosure * a;
+  const Real size = contact_math::min(contact_math::min(h1, h2), contact_math::min(d1, d2));
+  return 0.5 * size + kDivergedClosure * a;
 }
 
 } // namespace scpdyn

@@ -23,7 +23,10 @@ struct ContactFaceData
   /// 1: the face is searched; 0: an interior face erosion has not exposed, or a face of an
   /// eroded element (11.6)
   IndexView active;
-  RealView mass;   ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
+  RealView mass; ///< face mass M_f = m_e N_face/N_elem (10.1) [kg]
+  /// twice the distance from the face's centroid to its element's, at set-up [m]: a hex's
+  /// thickness behind the face; how deep a pair may overlap and still be a contact (3.2 rule 5)
+  RealView depth;
   IndexView rigid; ///< 1 when every node of the face has all velocity components prescribed
   DeviceView<JointParams *> params; ///< per surface, resolved SI parameters
   IndexView nodes_used;             ///< the distinct nodes of all contact faces, ascending
@@ -52,6 +55,7 @@ inline void allocateFaces(ContactFaceData &F, size_t n)
   F.part = IndexView("contact_face_part", n);
   F.active = IndexView("contact_face_active", n);
   F.mass = RealView("contact_face_mass", n);
+  F.depth = RealView("contact_face_depth", n);
   F.rigid = IndexView("contact_face_rigid", n);
   F.back = IndexView("contact_face_back", n);
   F.key = DeviceView<long *>("contact_face_key", n);
@@ -66,7 +70,7 @@ struct ContactFaceHost
 {
   DeviceView<Index *[kMaxFaceNodes]>::HostMirror nodes;
   IndexView::HostMirror num_nodes, element, surface, part, active, rigid, back, ghost;
-  RealView::HostMirror mass;
+  RealView::HostMirror mass, depth;
   DeviceView<long *>::HostMirror key;
 
   explicit ContactFaceHost(const ContactFaceData &F)
@@ -76,7 +80,8 @@ struct ContactFaceHost
         surface(Kokkos::create_mirror_view(F.surface)), part(Kokkos::create_mirror_view(F.part)),
         active(Kokkos::create_mirror_view(F.active)), rigid(Kokkos::create_mirror_view(F.rigid)),
         back(Kokkos::create_mirror_view(F.back)), ghost(Kokkos::create_mirror_view(F.ghost)),
-        mass(Kokkos::create_mirror_view(F.mass)), key(Kokkos::create_mirror_view(F.key))
+        mass(Kokkos::create_mirror_view(F.mass)), depth(Kokkos::create_mirror_view(F.depth)),
+        key(Kokkos::create_mirror_view(F.key))
   {
   }
   void copyTo(const ContactFaceData &F) const
@@ -91,6 +96,7 @@ struct ContactFaceHost
     Kokkos::deep_copy(F.back, back);
     Kokkos::deep_copy(F.ghost, ghost);
     Kokkos::deep_copy(F.mass, mass);
+    Kokkos::deep_copy(F.depth, depth);
     Kokkos::deep_copy(F.key, key);
   }
 };

@@ -194,6 +194,7 @@ ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const Bound
     if (_binned_cycle != cycle)
       sortIntoBins(nodes, dt, cycle);
     detect(nodes, dt);
+    ++_searches;
   }
   computeVstar(nodes, bc, dt);
   if (_state_before.extent(0) != _cp.state.extent(0))

@@ -149,7 +149,8 @@ void ContactSystem::saveState(RestartWriter &out, MPI_Comm comm,
           std::vector<double>{_joint_work, _joint_work_peak, _joint_work_gross, _stored_peak,
                               _slide_work, _slide_work_peak, _dt_prev, double(_max_count),
                               double(_binned_cycle), _geom.h_max,
-                              double(planes.size() / size_t(width)), _slide_carried});
+                              double(planes.size() / size_t(width)), _slide_carried, _motion,
+                              _motion_gap, double(_searches)});
   out.put("contact.planes", planes);
   // the same lists on every rank (elementsEroded())
   out.put("contact.eroded", std::vector<double>(_eroded.begin(), _eroded.end()));
@@ -180,7 +181,7 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
                               const std::vector<Index> &node_global)
 {
   const std::string where = "restart file '" + in.path() + "': ";
-  const std::vector<double> sc = in.reals("contact.scalars", 12);
+  const std::vector<double> sc = in.reals("contact.scalars", 15);
   _joint_work = sc[0];
   _joint_work_peak = sc[1];
   _joint_work_gross = sc[2];
@@ -193,6 +194,9 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
   _geom.h_max = sc[9];
   const long n = long(sc[10]);
   _slide_carried = sc[11];
+  _motion = sc[12];
+  _motion_gap = sc[13];
+  _searches = long(sc[14]);
   const int width = planeRowWidth(_cp);
   const std::vector<double> rows = in.reals("contact.planes", n * width);
 

@@ -180,7 +180,7 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const SearchData &S, Index i, Index j, c
   // CP at the next search and the blocks pass through each other. (The mean aperture is
   // averageParams(...).a without the rest of the averaging.)
   const Real a = 0.5 * (F.params(F.surface(i)).a + F.params(F.surface(j)).a);
-  const Real delta = candidatePenetration(G.diameter(i), G.diameter(j), a);
+  const Real delta = candidatePenetration(G.diameter(i), G.diameter(j), F.depth(i), F.depth(j), a);
   if (!(side_i > -delta && side_j > -delta) || shareNode(F, i, j))
     return false;
   Real x1[kMaxFaceNodes][3], x2[kMaxFaceNodes][3];

@@ -155,6 +155,7 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
   ContactFaceHost hf(F);
   auto h_emass = Kokkos::create_mirror_view_and_copy(HostSpace(), in.elems.mass);
   auto h_bc = Kokkos::create_mirror_view_and_copy(HostSpace(), in.nodes.bc);
+  auto h_x = Kokkos::create_mirror_view_and_copy(HostSpace(), in.nodes.x);
   const int dim = deck.dimension;
   std::vector<Index> first_element(mesh.parts.size() + 1, 0); // global element ids per part
   for (size_t p = 0; p < mesh.parts.size(); ++p)
@@ -172,6 +173,21 @@ ContactFaceData buildContactFaces(const ContactMeshInput &in, std::vector<Contac
     hf.part(i) = f.part;
     // (10.1): the element's mass per node times the face's nodes
     hf.mass(i) = h_emass(d) * Real(f.num_nodes) / Real(nodesPerElement(type));
+    { // (3.2 rule 5) twice the distance between the face's and the element's centroids
+      const HostPart &part = mesh.parts[size_t(f.part)];
+      const int npe = nodesPerElement(type);
+      const Index e = f.element - first_element[size_t(f.part)];
+      Real ce[3] = {0, 0, 0}, cf[3] = {0, 0, 0};
+      for (int a = 0; a < npe; ++a)
+        for (int c = 0; c < 3; ++c)
+          ce[c] += h_x(part.connectivity[size_t(npe * e + a)], c) / npe;
+      for (int a = 0; a < f.num_nodes; ++a)
+        for (int c = 0; c < 3; ++c)
+          cf[c] += h_x(f.nodes[size_t(a)], c) / f.num_nodes;
+      hf.depth(i) =
+          2 * std::sqrt((ce[0] - cf[0]) * (ce[0] - cf[0]) + (ce[1] - cf[1]) * (ce[1] - cf[1]) +
+                        (ce[2] - cf[2]) * (ce[2] - cf[2]));
+    }
     int prescribed = 0;
     for (int a = 0; a < kMaxFaceNodes; ++a)
     {

@@ -44,6 +44,7 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   _search_interval = deck.contact.search_interval;
   _passes = deck.contact.constraint_passes;
   _search_gap = deck.contact.search_gap;
+  _gap_from_motion = deck.contact.search_gap_motion;
   _tie_points = _dim == 2 ? 2 : 1;
   for (const auto &p : in.mesh->parts)
     _part_names.push_back(p.name);
@@ -81,11 +82,6 @@ void ContactSystem::declareLateNodes(LateNodes &late) const
   late.declare("contact (1D face orientation)", _faces.back);
 }
 
-bool ContactSystem::searchDue(long cycle) const
-{
-  return cycle == 0 || (_search_interval > 0 && cycle % _search_interval == 0);
-}
-
 void ContactSystem::sortIntoBins(const NodeFields &nodes, Real dt, long cycle)
 {
   if (!searchDue(cycle) || (_faces.count == 0 && !_comm.max))
@@ -93,7 +89,7 @@ void ContactSystem::sortIntoBins(const NodeFields &nodes, Real dt, long cycle)
   computeFaceGeometry(_faces, nodes, dt, _dim, _axisym, _geom);
   if (_comm.max) // the search distance g_search = h_max must not depend on the decomposition
     _geom.h_max = _comm.max(std::max(_geom.h_max, 0.0));
-  const Real gap = _search_gap > 0 ? _search_gap : _geom.h_max;
+  const Real gap = searchGap(_geom.h_max);
   // (3.2) every pair with overlap and gap <= g_search lies in the same or a neighbouring bin
   sortFacesIntoBins(_geom, _faces.count, _dim, std::max(2.0 * _geom.h_max, _geom.h_max + gap),
                     _bins);
@@ -102,7 +98,7 @@ void ContactSystem::sortIntoBins(const NodeFields &nodes, Real dt, long cycle)
 
 void ContactSystem::detect(const NodeFields &nodes, Real dt)
 {
-  const Real gap = _search_gap > 0 ? _search_gap : _geom.h_max;
+  const Real gap = searchGap(_geom.h_max);
   const CandidatePairs P = findCandidatePairs(_faces, _geom, _bins, nodes, dt, _dim, _axisym, gap);
   const CommonPlaneData old = _cp;
   CommonPlaneData cp = allocatePlanes(P.count);
@@ -248,6 +244,7 @@ std::vector<GhostFaceDesc> ContactSystem::ownFaces() const
   auto nn = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.num_nodes);
   auto surface = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.surface);
   auto mass = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.mass);
+  auto depth = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.depth);
   auto rigid = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.rigid);
   auto back = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.back);
   auto active = Kokkos::create_mirror_view_and_copy(HostSpace(), _own.active);
@@ -262,6 +259,7 @@ std::vector<GhostFaceDesc> ContactSystem::ownFaces() const
     g.rigid = rigid(f);
     g.active = active(f);
     g.mass = mass(f);
+    g.depth = depth(f);
     for (int a = 0; a < kMaxFaceNodes; ++a)
       g.nodes[a] = nodes(f, a);
     g.back = back(f);
@@ -294,6 +292,7 @@ void ContactSystem::setGhostFaces(const std::vector<GhostFaceDesc> &ghosts, Inde
     hf.part(f) = g.part;
     hf.active(f) = g.active;
     hf.mass(f) = g.mass;
+    hf.depth(f) = g.depth;
     hf.rigid(f) = g.rigid;
     hf.back(f) = g.back;
     hf.key(f) = g.key;

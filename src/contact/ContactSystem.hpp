@@ -67,8 +67,17 @@ public:
   /// \brief Set-up (step 2): faces of the deck's contact surfaces, parameters, empty CP list.
   explicit ContactSystem(const ContactMeshInput &in);
 
-  /// \brief True on the cycles that search for new CPs (cycle 0, then every search_interval).
+  /// \brief True on the cycles that search for new CPs: cycle 0, then every search_interval;
+  /// with `search_gap: motion` also the cycle planSearch found the contact nodes may have moved
+  /// a quarter of the gap since the last search (docs/theory.md 3.1a).
   bool searchDue(long cycle) const;
+  /// \brief Step 3, first of all (collective in a decomposed run), with `search_gap: motion`:
+  /// the contact nodes' fastest speed bounds their motion since the last search; a search is
+  /// due when the bound reaches a quarter of that search's gap, and then it sets the next gap.
+  void planSearch(const NodeFields &nodes, Real dt, long cycle);
+  /// \brief The largest gap at which a CP is created at this search, for faces up to
+  /// `face_size`: the deck's `search_gap`, the motion gap of planSearch, or `face_size`.
+  Real searchGap(Real face_size) const;
   /// \brief Step 3: on search cycles, half-step face geometry and sorting bins.
   void sortIntoBins(const NodeFields &nodes, Real dt, long cycle);
   /// \brief Step 9: detection on search cycles, then every CP's force (sub-steps A-E), scattered
@@ -154,6 +163,8 @@ public:
   /// \brief Largest contact-face diameter at the last search [m] (the same on every rank).
   Real largestFaceSize() const { return _geom.h_max; }
   Index maxCount() const { return _max_count; }
+  /// \brief Searches for new CPs so far (3.1, 3.1a), set-up ones excluded.
+  long searches() const { return _searches; }
   const ContactFaceData &faces() const { return _faces; }
   const CommonPlaneData &planes() const { return _cp; }
   const std::vector<ContactFaceInfo> &faceInfo() const { return _info; }
@@ -211,6 +222,13 @@ private:
   long _search_interval = 1;
   int _passes = 5;
   Real _search_gap = -1;
+  bool _gap_from_motion = false; ///< `search_gap: motion`
+  Real _motion = 0;              ///< bound on a contact node's motion since the last search [m]
+  Real _motion_gap = 0;          ///< the gap the motion of the last search's speed asks for [m]
+  long _searches = 0;            ///< searches()
+  long _planned_cycle = -1;      ///< the cycle planSearch decided ...
+  bool _planned_due = false;     ///< ... and whether it searches
+  bool searchScheduled(long cycle) const;
   ContactFaceData _faces;
   std::vector<ContactFaceInfo> _info;
   ContactFaceData _own; ///< this rank's faces (= _faces without ghosts)

@@ -109,8 +109,8 @@ void Solver::rebuildGhostFaces()
   }
   size = allReduceMax(size, _m.comm);
   // a common plane needs overlapping faces within the search gap: centroids closer than two
-  // face sizes plus the gap (the search's own gap defaults to its largest face size)
-  const Real gap = _m.deck.contact.search_gap > 0 ? _m.deck.contact.search_gap : size;
+  // face sizes plus the gap (2 r >= a face's diameter: at least the search's own gap)
+  const Real gap = _m.contact->searchGap(size);
   _m.dd->ghosts->rebuild(own, centroids, 2 * size + gap, _m.deck.dimension);
   _m.dd->rebuild_bytes += _m.dd->ghosts->bytesLastRebuild();
 

@@ -748,6 +748,7 @@ void Outputs::finishWith(const std::string &status, const std::string &error,
       .add("energy_balance_error", std::abs(_last_balance_error))
       .add("energy_balance_error_max", _max_balance_error)
       .add("common_planes_max", long(_solver.contact() ? _solver.contact()->maxCount() : 0))
+      .add("contact_searches", long(_solver.contact() ? _solver.contact()->searches() : 0))
       .add("element_cycles_per_second", cycle_time > 0 ? element_cycles / cycle_time : 0.0)
       .add("ns_per_element_cycle", element_cycles > 0 ? 1e9 * cycle_time / element_cycles : 0.0);
   if (ranks > 1)

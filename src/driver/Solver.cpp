@@ -112,6 +112,8 @@ void Solver::stepSortIntoBins()
 {
   if (!_m.contact)
     return;
+  ScopedStep t(_timers, "03_sort_into_bins");
+  _m.contact->planSearch(_m.nodes, _dt, _cycle); // whether this cycle searches
   // a search cycle begins with the faces erosion has exposed or removed since the last one
   // (decomposed: before step 4 tells the other ranks)
   if (_m.contact->searchDue(_cycle) && _m.contact->applyErosion() && _m.dd)
@@ -119,7 +121,6 @@ void Solver::stepSortIntoBins()
   // decomposed: the search sorts in step 9, once the ghost faces have this cycle's data
   if (_m.dd)
     return;
-  ScopedStep t(_timers, "03_sort_into_bins");
   _m.contact->sortIntoBins(_m.nodes, _dt, _cycle);
 }
 

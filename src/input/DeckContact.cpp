@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 namespace scpdyn
@@ -213,7 +214,19 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
                                   c["constraint_passes"].text());
     spec.constraint_passes = int(n);
   }
-  spec.search_gap = readReal(c, "search_gap", spec.search_gap, isPositive, "> 0 (m)");
+  if (c.has("search_gap"))
+  {
+    const YamlValue v = c["search_gap"];
+    char *end = nullptr;
+    const std::string t = v.text();
+    const double x = std::strtod(t.c_str(), &end);
+    if (t == "motion")
+      spec.search_gap_motion = true;
+    else if (!v.node().IsScalar() || t.empty() || *end != '\0' || !isPositive(x))
+      v.fail("must be a gap > 0 (m) or 'motion', got " + t);
+    else
+      spec.search_gap = v.real();
+  }
   if (!c.has("surfaces"))
     c.missing("surfaces");
   const bool check_sets = std::none_of(deck.parts.begin(), deck.parts.end(), [](const PartSpec &p) {

@@ -181,7 +181,9 @@ void writeContact(YAML::Emitter &out, const ContactSpec &c)
   else
     out << c.search_interval;
   out << YAML::Key << "constraint_passes" << YAML::Value << c.constraint_passes;
-  if (c.search_gap > 0) // no key: the largest contact-face size
+  if (c.search_gap_motion)
+    out << YAML::Key << "search_gap" << YAML::Value << "motion";
+  else if (c.search_gap > 0) // no key: the largest contact-face size
     real(out << YAML::Key << "search_gap" << YAML::Value, c.search_gap);
   beginList(out, "surfaces", c.surfaces.empty());
   for (const SurfaceSpec &s : c.surfaces)

@@ -18,7 +18,7 @@ namespace scpdyn
 {
 
 /// \brief The version of the layout Solver::saveState() writes; raise it when that changes.
-constexpr long kRestartFormatVersion = 4;
+constexpr long kRestartFormatVersion = 5;
 
 class RestartWriter
 {

@@ -15,8 +15,9 @@ namespace scpdyn
 namespace
 {
 
-constexpr int kFaceNodes = 5;                  ///< 4 face nodes + the 1D back node
-constexpr int kFaceWords = 6 + kFaceNodes * 5; ///< doubles per face descriptor
+constexpr int kFaceNodes = 5; ///< 4 face nodes + the 1D back node
+constexpr int kFaceHead = 7;  ///< key, part, surface, nodes, rigid, mass, depth
+constexpr int kFaceWords = kFaceHead + kFaceNodes * 5; ///< doubles per face descriptor
 constexpr int kTagCount = 7401, kTagData = 7402, kTagGather = 7403;
 
 using Bins = std::vector<long long>;
@@ -161,7 +162,7 @@ void GhostFaces::rebuild(const std::vector<GhostFaceDesc> &faces,
       const GhostFaceDesc &g = faces[f];
       std::vector<double> &o = desc_out[j];
       o.insert(o.end(), {double(g.key), double(g.part), double(g.surface), double(g.num_nodes),
-                         double(g.rigid), g.mass});
+                         double(g.rigid), g.mass, g.depth});
       for (int a = 0; a < kFaceNodes; ++a)
       {
         const bool used = a < 4 ? a < g.num_nodes : g.back >= 0;
@@ -190,7 +191,7 @@ void GhostFaces::rebuild(const std::vector<GhostFaceDesc> &faces,
     for (size_t q = 0; q + kFaceWords <= in.size(); q += kFaceWords)
       for (int a = 0; a < kFaceNodes; ++a)
       {
-        const double *w = &in[q + 6 + size_t(5 * a)];
+        const double *w = &in[q + kFaceHead + size_t(5 * a)];
         const Index id = Index(w[0]);
         if (id >= 0 && localOf(id) < 0)
           ghost[id] = {w[1], {int(w[2]), int(w[3]), int(w[4])}};
@@ -225,9 +226,10 @@ void GhostFaces::rebuild(const std::vector<GhostFaceDesc> &faces,
       g.num_nodes = int(w[3]);
       g.rigid = int(w[4]);
       g.mass = w[5];
+      g.depth = w[6];
       for (int a = 0; a < kFaceNodes; ++a)
       {
-        const Index id = Index(w[6 + 5 * a]);
+        const Index id = Index(w[kFaceHead + 5 * a]);
         if (id < 0)
           continue;
         (a < 4 ? g.nodes[a] : g.back) = nodeOf(id);

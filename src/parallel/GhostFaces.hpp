@@ -40,6 +40,7 @@ struct GhostFaceDesc
   int rigid = 0;  ///< every node component prescribed (10.1)
   int active = 1; ///< 0: not searched now (erosion, 11.6): never sent as a ghost face
   Real mass = 0;  ///< face mass M_f [kg]
+  Real depth = 0; ///< depth of the element behind (ContactFaceData::depth) [m]
   Index nodes[4] = {-1, -1, -1, -1}; ///< local node id, or ghost slot (>= num_local) on receipt
   /// 1D: the other node of the element behind the point face (orients it), else -1; numbered
   /// like `nodes`

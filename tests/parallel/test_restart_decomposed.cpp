@@ -267,10 +267,12 @@ TEST_P(RestartDecomposed, AnotherRankCountContinuesToRoundOff)
 
 // decks whose cycles read contact histories: a quasi-implicit joint, an explicit one (its time
 // step from the CPs' approach), a sleepy wall with plasticity and a slide line, a slide line on
-// faces that erosion exposes (restart while the plate erodes)
+// faces that erosion exposes (restart while the plate erodes), the search gap from the motion
+// (its motion bound and gap carried over)
 INSTANTIATE_TEST_SUITE_P(ContactDecks, RestartDecomposed,
                          ::testing::Values("block_impact_2d", "explicit_touching_2d",
-                                           "sleepy_wall_2d", "eroding_plate_2d"));
+                                           "sleepy_wall_2d", "eroding_plate_2d",
+                                           "released_impact_motion_2d"));
 
 TEST(RestartDecomposedFile, BadFileIsRefusedOnEveryRank)
 {

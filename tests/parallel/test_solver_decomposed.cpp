@@ -212,6 +212,13 @@ TEST(SolverDecomposed, BlockImpact2DMatchesSerial)
   expectInvariant("block impact 2D", "block_impact_2d.yaml", 50);
 }
 
+// the search gap from the motion: every rank searches on the same cycles (the release's search
+// brought forward) with the same gap, and the ghost faces reach it
+TEST(SolverDecomposed, ReleasedImpactWithTheMotionGap2DMatchesSerial)
+{
+  expectInvariant("released impact, motion gap 2D", "released_impact_motion_2d.yaml", 60);
+}
+
 TEST(SolverDecomposed, ExplicitTouching2DMatchesSerial)
 {
   expectInvariant("explicit joint touching at t = 0, 2D", "explicit_touching_2d.yaml", 200);

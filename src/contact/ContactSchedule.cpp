@@ -1,0 +1,73 @@
+// When the contact searches and how far it looks (docs/theory.md 3.1a).
+#include "contact/ContactSystem.hpp"
+
+namespace scpdyn
+{
+
+namespace
+{
+
+/// A gap of `search_gap: motion` is never below this fraction of the largest face, so a wall
+/// at rest still pairs faces that round-off or a settling step brings within reach.
+constexpr Real kMotionGapFloor = 0.01;
+/// The gap is this many times the contact nodes' motion over one search interval (a node moves
+/// at most 2 |v| dt between two half-step positions): the trigger, a quarter of the gap for two
+/// faces that approach each other, then falls due at the interval's end for steady motion.
+constexpr Real kGapPerIntervalMotion = 4.0;
+
+} // namespace
+
+bool ContactSystem::searchScheduled(long cycle) const
+{
+  return cycle == 0 || (_search_interval > 0 && cycle % _search_interval == 0);
+}
+
+bool ContactSystem::searchDue(long cycle) const
+{
+  if (_gap_from_motion && cycle == _planned_cycle)
+    return _planned_due;
+  return searchScheduled(cycle);
+}
+
+Real ContactSystem::searchGap(Real face_size) const
+{
+  if (_gap_from_motion)
+    return std::max(_motion_gap, kMotionGapFloor * face_size);
+  return _search_gap > 0 ? _search_gap : face_size;
+}
+
+void ContactSystem::planSearch(const NodeFields &nodes, Real dt, long cycle)
+{
+  if (!_gap_from_motion || cycle == _planned_cycle)
+    return;
+  auto used = _faces.nodes_used;
+  auto v = nodes.v;
+  Real v2 = 0;
+  Kokkos::parallel_reduce(
+      "scpdyn::contact::fastestNode", Kokkos::RangePolicy<ExecSpace>(0, used.extent(0)),
+      KOKKOS_LAMBDA(const size_t i, Real &m) {
+        const Index a = used(i);
+        const Real s = v(a, 0) * v(a, 0) + v(a, 1) * v(a, 1) + v(a, 2) * v(a, 2);
+        m = s > m ? s : m;
+      },
+      Kokkos::Max<Real>(v2));
+  Real speed = std::sqrt(v2);
+  if (_comm.max) // every rank decides alike
+    speed = _comm.max(speed);
+  // x^{n+1/2} - x^{n-1/2} = dt (3 v^{n+1/2} - v^{n-1/2}) / 2 for a constant dt: at most 2 |v| dt
+  const Real step = 2 * speed * dt;
+  if (cycle > 0)
+    _motion += step;
+  // two faces each moving _motion + the next step close a gap by twice that: search before it
+  // reaches half the gap, the other half left for speed that grows within the step
+  const bool due = searchScheduled(cycle) || 4 * (_motion + step) >= searchGap(_geom.h_max);
+  if (due)
+  {
+    _motion = 0;
+    _motion_gap = kGapPerIntervalMotion * step * Real(std::max(_search_interval, 1L) + 1);
+  }
+  _planned_cycle = cycle;
+  _planned_due = due;
+}
+
+} // namespace scpdyn
