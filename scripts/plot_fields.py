@@ -2,7 +2,7 @@
 """Draw a field of a run on its deformed mesh at chosen times.
 
 usage: /usr/bin/python3 scripts/plot_fields.py OUTDIR [OUTDIR2] [--field NAME] [--times T ...]
-           [--edges] [--contacts] [--mirror] [--out PNG]
+           [--edges] [--contacts] [--mirror] [--camera X Y Z] [--up X Y Z] [--out PNG]
 
 Reads OUTDIR/fields.h5 (the frames fields.xmf names). Each requested time (in s) is drawn at
 the nearest written frame, whose time the panel title gives. One colour scale for every panel,
@@ -19,6 +19,9 @@ frame, combined into one PNG.
   --contacts     the contact points (contacts.h5) of the same frame as dots; failed sleepy
                  joints as larger magenta dots
   --mirror       2D: mirror a quarter model about x = 0 and y = 0 (symmetry planes)
+  --camera X Y Z 3D: the direction from the model's centre to the camera (default 1 0.8 1.6)
+  --up X Y Z     3D: the direction that is up in the picture (default 0 1 0; 0 0 1 for a
+                 deck with gravity along -z)
   --out PNG      default OUTDIR/fields_<field>.png
 
 Prints `plot_fields: wrote PNG field NAME range MIN MAX` (SI units, over the drawn frames).
@@ -381,7 +384,8 @@ def plot_3d(runs, rows, name, centre, vmin, vmax, args):
                   for i, (_, row) in enumerate(rows) for j, (run, k) in enumerate(zip(runs, row))]
         spec = dict(panels=panels, expression=f"({pv_expression(name, centre)})/{factor!r}",
                     centre=centre, label=label, range=[vmin / factor, vmax / factor],
-                    edges=args.edges, result=os.path.join(tmp, "ranges.json"))
+                    edges=args.edges, camera=args.camera, up=args.up,
+                    result=os.path.join(tmp, "ranges.json"))
         with open(os.path.join(tmp, "spec.json"), "w") as f:
             json.dump(spec, f)
         cmd = ["pvbatch", os.path.abspath(__file__), "--pvbatch", os.path.join(tmp, "spec.json")]
@@ -450,7 +454,7 @@ def pvbatch_main(spec_path):
             cps.Representation, cps.PointSize, cps.AmbientColor = "Points", 2, [0, 0, 0]
             cps.DiffuseColor = [0, 0, 0]
             pv.ColorBy(cps, None)
-        view.CameraPosition, view.CameraViewUp = [1, 0.8, 1.6], [0, 1, 0]
+        view.CameraPosition, view.CameraViewUp = spec["camera"], spec["up"]
         view.CameraFocalPoint = [0, 0, 0]
         view.ResetCamera()
         pv.SaveScreenshot(p["png"], view)
@@ -470,6 +474,8 @@ def main(argv):
     ap.add_argument("--edges", action="store_true")
     ap.add_argument("--contacts", action="store_true")
     ap.add_argument("--mirror", action="store_true")
+    ap.add_argument("--camera", nargs=3, type=float, default=[1, 0.8, 1.6])
+    ap.add_argument("--up", nargs=3, type=float, default=[0, 1, 0])
     ap.add_argument("--out")
     args = ap.parse_args(argv)
     try:
