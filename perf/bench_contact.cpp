@@ -32,8 +32,8 @@ double cpuSeconds()
 
 // ---- detection on a synthetic jointed grid -------------------------------------------------
 
-/// Every field of ContactFaceData is filled as buildContactFaces fills it for a serial run (a
-/// field added there must be added here too, or the search reads an empty View).
+/// Every field of ContactFaceData is allocated by allocateFaces and filled as buildContactFaces
+/// fills it for a serial run (a field added there with a non-zero value must be set here too).
 /// Cells of edge h on an n^dim lattice, every cell with its own nodes, every cell face a
 /// contact face (what a jointed rock mass of one-element blocks gives): 4 n^2 or 6 n^3 faces,
 /// each interior face touching exactly one other.
@@ -76,22 +76,13 @@ JointedGrid makeGrid(int dim, int n)
   Kokkos::deep_copy(g.nodes.mass, 1.0);
 
   ContactFaceData &F = g.faces;
-  F.count = num_faces;
-  F.nodes = DeviceView<Index *[kMaxFaceNodes]>("grid_face_nodes", size_t(num_faces));
-  F.num_nodes = IndexView("grid_face_nn", size_t(num_faces));
-  F.element = IndexView("grid_face_element", size_t(num_faces));
-  F.surface = IndexView("grid_face_surface", size_t(num_faces));
-  F.mass = RealView("grid_face_mass", size_t(num_faces));
-  F.depth = RealView("grid_face_depth", size_t(num_faces));
-  F.rigid = IndexView("grid_face_rigid", size_t(num_faces));
+  // every per-face View, zeroed: one surface (0), one part (0), not rigid, no ghost faces (a
+  // serial run); keys as ContactSetup builds them (element * 8 + local face); back only
+  // matters in 1D
+  allocateFaces(F, size_t(num_faces));
   F.params = DeviceView<JointParams *>("grid_params", 1);
   F.nodes_used = IndexView("grid_nodes_used", size_t(num_nodes));
-  // serial run: no ghost faces; keys as ContactSetup builds them (element * 8 + local face);
-  // back only matters in 1D
-  F.ghost = IndexView("grid_face_ghost", size_t(num_faces));
-  F.key = DeviceView<long *>("grid_face_key", size_t(num_faces));
-  F.back = IndexView("grid_face_back", size_t(num_faces));
-  F.density = RealView("grid_face_density", size_t(num_faces));
+  Kokkos::deep_copy(F.active, Index(1));
   Kokkos::deep_copy(F.back, Index(-1));
   Kokkos::deep_copy(F.density, 2600.0);
   auto hn = Kokkos::create_mirror_view(F.nodes);
