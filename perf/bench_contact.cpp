@@ -76,8 +76,8 @@ JointedGrid makeGrid(int dim, int n)
   Kokkos::deep_copy(g.nodes.mass, 1.0);
 
   ContactFaceData &F = g.faces;
-  // every per-face View, zeroed: one surface (0), one part (0), not rigid, no ghost faces (a
-  // serial run); keys as ContactSetup builds them (element * 8 + local face); back only
+  // every per-face View, zeroed: every face on the first surface and part, not rigid, no ghost
+  // faces (a serial run); keys as ContactSetup builds them (element * 8 + local face); back only
   // matters in 1D
   allocateFaces(F, size_t(num_faces));
   F.params = DeviceView<JointParams *>("grid_params", 1);
