@@ -75,6 +75,11 @@ public:
   /// the contact nodes' fastest speed bounds their motion since the last search; a search is
   /// due when the bound reaches a quarter of that search's gap, and then it sets the next gap.
   void planSearch(const NodeFields &nodes, Real dt, long cycle);
+  /// \brief The velocities were set, not integrated (a part released, 2.4): the implicit CPs'
+  /// predicted end-of-step velocities (10.6) do not describe how the mesh moved, so the next
+  /// step does without their feedback. Every CP alike, so every rank and every copy of a CP
+  /// agree.
+  void velocitiesSet();
   /// \brief The largest gap at which a CP is created at this search, for faces up to
   /// `face_size`: the deck's `search_gap`, the motion gap of planSearch, or `face_size`.
   Real searchGap(Real face_size) const;

@@ -245,6 +245,8 @@ void Solver::releaseParts()
     return;
   NodeSums gained =
       releaseDue(_m.release, _time, _m.nodes, _m.dd ? _m.dd->owned_device : IndexView());
+  if (_m.contact)
+    _m.contact->velocitiesSet();
   if (_m.dd) // every rank releases in the same cycle: the sums are collective
   {
     Real sum[4] = {gained.kinetic, gained.momentum[0], gained.momentum[1], gained.momentum[2]};
