@@ -41,6 +41,14 @@ void ContactSystem::computeVstar(const NodeFields &nodes, const BoundaryConditio
       });
 }
 
+void ContactSystem::velocitiesSet()
+{
+  auto state = _cp.state;
+  Kokkos::parallel_for(
+      "scpdyn::contact::velocitiesSet", Kokkos::RangePolicy<ExecSpace>(0, _cp.count),
+      KOKKOS_LAMBDA(const Index p) { state(p).dt_model = 0; });
+}
+
 void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
 {
   const ContactFaceData F = _faces;

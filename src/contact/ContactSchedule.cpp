@@ -36,14 +36,6 @@ Real ContactSystem::searchGap(Real face_size) const
   return _search_gap > 0 ? _search_gap : face_size;
 }
 
-void ContactSystem::velocitiesSet()
-{
-  auto state = _cp.state;
-  Kokkos::parallel_for(
-      "scpdyn::contact::velocitiesSet", Kokkos::RangePolicy<ExecSpace>(0, _cp.count),
-      KOKKOS_LAMBDA(const Index p) { state(p).dt_model = 0; });
-}
-
 void ContactSystem::planSearch(const NodeFields &nodes, Real dt, long cycle)
 {
   if (!_gap_from_motion || cycle == _planned_cycle)
