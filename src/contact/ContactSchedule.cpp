@@ -10,10 +10,14 @@ namespace
 /// A gap of `search_gap: motion` is never below this fraction of the largest face, so a wall
 /// at rest still pairs faces that round-off or a settling step brings within reach.
 constexpr Real kMotionGapFloor = 0.01;
+/// A search falls due once a contact node may have moved this share of the gap: two faces that
+/// approach each other then close at most half of it, the other half left for speed that grows
+/// within a step.
+constexpr Real kTriggerShare = 0.25;
 /// The gap is this many times the contact nodes' motion over one search interval (a node moves
-/// at most 2 |v| dt between two half-step positions): the trigger, a quarter of the gap for two
-/// faces that approach each other, then falls due at the interval's end for steady motion.
-constexpr Real kGapPerIntervalMotion = 4.0;
+/// at most 2 |v| dt between two half-step positions), so that for steady motion the trigger
+/// falls due at the interval's end.
+constexpr Real kGapPerIntervalMotion = 1 / kTriggerShare;
 
 } // namespace
 
@@ -58,9 +62,9 @@ void ContactSystem::planSearch(const NodeFields &nodes, Real dt, long cycle)
   const Real step = 2 * speed * dt;
   if (cycle > 0)
     _motion += step;
-  // two faces each moving _motion + the next step close a gap by twice that: search before it
-  // reaches half the gap, the other half left for speed that grows within the step
-  const bool due = searchScheduled(cycle) || 4 * (_motion + step) >= searchGap(_geom.h_max);
+  // the bound after the next step, against the share of the gap the trigger allows
+  const bool due =
+      searchScheduled(cycle) || _motion + step >= kTriggerShare * searchGap(_geom.h_max);
   if (due)
   {
     _motion = 0;

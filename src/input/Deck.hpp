@@ -234,7 +234,7 @@ struct ContactSpec
   int constraint_passes = 30; ///< sticky/slide-line solve iterations (docs/theory.md 10.8)
   Real search_gap = -1;       ///< largest gap at which a CP is created [m]; < 0: largest face size
   /// `search_gap: motion`: the gap from the contact nodes' speed, and a search as soon as they
-  /// may have moved half of it (docs/theory.md 3.1a)
+  /// may have moved a quarter of it (docs/theory.md 3.1a)
   bool search_gap_motion = false;
 };
 

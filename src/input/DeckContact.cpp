@@ -225,7 +225,7 @@ void parseContact(const YamlMap &root, Deck &deck, const DeckNames &names)
     else if (!v.node().IsScalar() || t.empty() || *end != '\0' || !isPositive(x))
       v.fail("must be a gap > 0 (m) or 'motion', got " + t);
     else
-      spec.search_gap = v.real();
+      spec.search_gap = x;
   }
   if (!c.has("surfaces"))
     c.missing("surfaces");

@@ -35,7 +35,6 @@ struct Impact
   long searches = 0;
   long scheduled = 0;        ///< cycles that are multiples of search_interval, cycle 0 too
   double first_gap = 0;      ///< min over the CPs of -u when the first CP exists [m]
-  double release_cycle = -1; ///< the first cycle that sees the block moving
   double paired_cycle = -1;  ///< the first cycle that has a CP
   std::vector<double> gap;   ///< per cycle: min over the CPs of -u, or 0 without CPs [m]
   double impactor_vx = 0;    ///< the block's mean x-velocity at the end [m/s]
