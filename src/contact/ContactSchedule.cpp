@@ -16,7 +16,7 @@ constexpr Real kMotionGapFloor = 0.01;
 constexpr Real kTriggerShare = 0.25;
 /// The gap is this many times the contact nodes' motion over one search interval (a node moves
 /// at most 2 |v| dt between two half-step positions), so that for steady motion the trigger
-/// falls due at the interval's end.
+/// falls due at the interval's end; at rest it never does.
 constexpr Real kGapPerIntervalMotion = 1 / kTriggerShare;
 
 } // namespace
@@ -62,9 +62,12 @@ void ContactSystem::planSearch(const NodeFields &nodes, Real dt, long cycle)
   const Real step = 2 * speed * dt;
   if (cycle > 0)
     _motion += step;
-  // the bound after the next step, against the share of the gap the trigger allows
-  const bool due =
-      searchScheduled(cycle) || _motion + step >= kTriggerShare * searchGap(_geom.h_max);
+  // the bound after the next step, against the share of the gap the trigger allows. Nothing
+  // else can bring a rejected pair within reach, so the interval's own searches would find
+  // nothing new: only cycle 0, faces that erosion exposed (the same list on every rank) and
+  // the motion bring a search
+  const bool due = cycle == 0 || !_eroded_pending.empty() ||
+                   _motion + step >= kTriggerShare * searchGap(_geom.h_max);
   if (due)
   {
     _motion = 0;

@@ -72,6 +72,8 @@ struct SearchData
   Real half_dt, g_search;
   int dim;
   bool axisym;
+  Real r_max; ///< the largest face radius (FaceBins::packed)
+  Real a_max; ///< the largest aperture of the surfaces
 };
 
 KOKKOS_INLINE_FUNCTION int binOf(Real xc, Real lo, Real size, int n)
@@ -197,9 +199,48 @@ KOKKOS_INLINE_FUNCTION bool isCandidate(const SearchData &S, Index i, Index j, c
   return g.valid && -g.u0 <= S.g_search && cpIsActive(g);
 }
 
+/// Bounds of a pair that passes rule 2 (n_f.n_g < -1/2): t = sqrt((1 + c)/(1 - c)) of
+/// boundsAllowPair() is below 1/sqrt(3) and |n_f - n_g| above sqrt(3). When both faces are in
+/// opposite axis classes (normals within 14.04 degrees of +-e_k, kAxisCos), n_f.n_g <=
+/// -cos(28.07 deg), so t <= tan(14.04 deg) and |n_f - n_g| >= 2 kAxisCos; n_cp lies in the same
+/// cone about e_k, so its components off e_k are below sin(14.04 deg).
+constexpr Real kTiltAny = 0.57736, kBehindAny = 2 / 1.7320;
+constexpr Real kTiltAxis = 0.25010, kBehindAxis = 1 / kAxisCos, kAxisSin = 0.24200;
+
+/// Half-widths `hw` per axis of the box about face i's centroid that holds the centroid of
+/// every face j of class `cj` that passes boundsAllowPair() and the side test of isCandidate(),
+/// from i's radius r_i, diameter h_i and class ci and the largest radius and aperture. With
+/// dc = c_j - c_i = lateral + dn n_cp:
+///  * lateral: |lateral| <= r_i + r_j (boundsAllowPair's first test);
+///  * ahead: dn <= g_search + t (|lateral| + 2 min(r_i, r_j)) (its second test);
+///  * behind: dn = (side_i + side_j) / |n_i - n_j| > -2 delta / |n_i - n_j|, since both sides
+///    exceed -delta (rule 5, delta <= h_i / 2 + 2a);
+/// so |dc| <= sqrt(lateral^2 + dn^2), and for opposite axis classes |dc_k| <= |dn| + s |lateral|
+/// along the axis, |lateral| + s |dn| across it. The stencil of a face, not the bins' reach
+/// (2 h_max, every face of a grid of equal faces), bounds the faces visited: a face of the
+/// Fig. 10 wall visits a third of the faces it did. The same pairs pass (the tests come after).
+KOKKOS_INLINE_FUNCTION void pairBox(const SearchData &S, Real r_i, Real h_i, int ci, int cj,
+                                    Real hw[3])
+{
+  const bool axis = ci != kNormalClasses - 1 && cj == (ci ^ 1);
+  const Real t = axis ? kTiltAxis : kTiltAny;
+  const Real lateral = (r_i + S.r_max) * (1 + 1e-6);
+  const Real ahead = S.g_search * (1 + 1e-12) + 1e-6 * lateral + t * (lateral + 2 * r_i);
+  const Real behind =
+      (axis ? kBehindAxis : kBehindAny) * candidatePenetration(h_i, h_i, h_i, h_i, S.a_max);
+  const Real dn = contact_math::max(ahead, behind);
+  const Real any = kmath::sqrt(lateral * lateral + dn * dn);
+  for (int d = 0; d < 3; ++d)
+  {
+    const Real w = !axis ? any : d == ci / 2 ? dn + kAxisSin * lateral : lateral + kAxisSin * dn;
+    hw[d] = contact_math::min(w, any) * (1 + 1e-9);
+  }
+}
+
 /// Calls visit(j) for every candidate j > i (in no particular order). The stencil is the block of bins
-/// that holds the cube |c_j - c_i| <= reach per axis; the cube itself is tested per face, so
-/// the result does not depend on where the bin boundaries fall.
+/// that holds the box |c_j - c_i| <= hw per axis (pairBox() for each class visited, or the
+/// bins' reach in 1D); the box itself is tested per face, so the result does not depend on
+/// where the bin boundaries fall.
 template <class Visit>
 KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit &&visit)
 {
@@ -212,12 +253,6 @@ KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit
   for (int d = 0; d < 3; ++d)
     a[d] = S.G.centroid(i, d), a[3 + d] = S.G.normal(i, d);
   a[6] = S.G.radius(i), a[7] = S.G.area(i);
-  int blo[3], bhi[3];
-  for (int d = 0; d < 3; ++d)
-  {
-    blo[d] = binOf(a[d] - B.reach, B.lo[d], B.size, B.dims[d]);
-    bhi[d] = binOf(a[d] + B.reach, B.lo[d], B.size, B.dims[d]);
-  }
   const int ci = normalClass(a[3], a[4], a[5]);
   const int other = kNormalClasses - 1;
   int visit_class[kNormalClasses], nc = 0;
@@ -225,8 +260,18 @@ KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit
     if (ci == other || k == other || k == (ci ^ 1))
       visit_class[nc++] = k;
   const Index ncells = Index(B.dims[0]) * B.dims[1] * B.dims[2];
-  // rows are class-major, so a run of bins along x is one contiguous range of faces
   for (int m = 0; m < nc; ++m)
+  {
+    Real hw[3] = {B.reach, B.reach, B.reach}; // 1D point faces have no radius: the bins' reach
+    if (S.dim > 1)
+      pairBox(S, a[6], S.G.diameter(i), ci, visit_class[m], hw);
+    int blo[3], bhi[3];
+    for (int d = 0; d < 3; ++d)
+    {
+      blo[d] = binOf(a[d] - hw[d], B.lo[d], B.size, B.dims[d]);
+      bhi[d] = binOf(a[d] + hw[d], B.lo[d], B.size, B.dims[d]);
+    }
+    // rows are class-major, so a run of bins along x is one contiguous range of faces
     for (int cz = blo[2]; cz <= bhi[2]; ++cz)
       for (int cy = blo[1]; cy <= bhi[1]; ++cy)
       {
@@ -243,8 +288,8 @@ KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit
           Real b[8];
           for (int k = 0; k < 8; ++k)
             b[k] = B.packed(q, k);
-          if (contact_math::abs(b[0] - a[0]) > B.reach ||
-              contact_math::abs(b[1] - a[1]) > B.reach || contact_math::abs(b[2] - a[2]) > B.reach)
+          if (contact_math::abs(b[0] - a[0]) > hw[0] || contact_math::abs(b[1] - a[1]) > hw[1] ||
+              contact_math::abs(b[2] - a[2]) > hw[2])
             continue;
           Real n_cp[3] = {0, 0, 0};
           // 1D (point faces, a handful of them): rule 2 only, the bounds are not needed
@@ -253,6 +298,7 @@ KOKKOS_INLINE_FUNCTION void forEachCandidate(const SearchData &S, Index i, Visit
             visit(j);
         }
       }
+  }
 }
 
 } // namespace
@@ -388,7 +434,17 @@ CandidatePairs findCandidatePairs(const ContactFaceData &F, const FaceGeometryDa
                                   bool axisym, Real g_search)
 {
   const Index nf = F.count;
-  const SearchData S{F, G, bins, nodes.x, nodes.v, 0.5 * dt, g_search, dim, axisym};
+  Real r_max = 0, a_max = 0;
+  auto radius = G.radius;
+  Kokkos::parallel_reduce(
+      "scpdyn::contact::searchBounds", Kokkos::RangePolicy<ExecSpace>(0, nf),
+      KOKKOS_LAMBDA(const Index f, Real &r, Real &a) {
+        r = radius(f) > r ? radius(f) : r;
+        const Real af = F.params(F.surface(f)).a;
+        a = af > a ? af : a;
+      },
+      Kokkos::Max<Real>(r_max), Kokkos::Max<Real>(a_max));
+  const SearchData S{F, G, bins, nodes.x, nodes.v, 0.5 * dt, g_search, dim, axisym, r_max, a_max};
   IndexView row_count("contact_pair_counts", size_t(nf));
   IndexView row_offsets("contact_pair_offsets", size_t(nf) + 1);
   IndexView cache("contact_pair_cache", size_t(nf) * kCachedPairs);

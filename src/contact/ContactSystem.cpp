@@ -56,7 +56,6 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   {
     const std::string &o = deck.contact.surfaces[s].option;
     const SurfaceSpec &spec = deck.contact.surfaces[s];
-    _has_constraints = _has_constraints || o == "sticky" || o == "slide_line" || o == "sleepy";
     _has_explicit = _has_explicit || o == "explicit";
     _has_slide = _has_slide || o == "slide_line";
     _has_sleepy = _has_sleepy || o == "sleepy";
@@ -150,26 +149,29 @@ void ContactSystem::countPlanes()
 {
   const ContactFaceData F = _faces;
   const CommonPlaneData cp = _cp;
-  // the CPs counted on this rank (decomposed: those of its face 1), and the self-contact CPs
-  // among them: slide lines, whatever the surfaces' options (11.5)
-  Index owned = 0, self = 0;
+  // the CPs counted on this rank (decomposed: those of its face 1), the self-contact CPs among
+  // them (slide lines, whatever the surfaces' options, 11.5) and the CPs of the velocity-
+  // constraint options (slide line, sticky, sleepy; self-contact among them)
+  Index owned = 0, self = 0, constraint = 0;
   Kokkos::parallel_reduce(
-      "scpdyn::contact::ownedPlanes", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-      KOKKOS_LAMBDA(const Index q, Index &n) { n += F.ghost(cp.face1(q)) == 0 ? 1 : 0; }, owned);
-  Kokkos::parallel_reduce(
-      "scpdyn::contact::selfContactPlanes", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
-      KOKKOS_LAMBDA(const Index q, Index &n) {
-        n += F.ghost(cp.face1(q)) == 0 && F.part(cp.face1(q)) == F.part(cp.face2(q)) ? 1 : 0;
+      "scpdyn::contact::countPlanes", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
+      KOKKOS_LAMBDA(const Index q, Index &n, Index &s, Index &c) {
+        if (F.ghost(cp.face1(q)) != 0)
+          return;
+        ++n;
+        s += F.part(cp.face1(q)) == F.part(cp.face2(q)) ? 1 : 0;
+        c += contact_kernels::isConstraint(cp.params(q).option) ? 1 : 0;
       },
-      self);
+      owned, self, constraint);
   if (_comm.sum)
   {
-    Real counts[2] = {Real(owned), Real(self)};
-    _comm.sum(counts, 2);
-    owned = Index(counts[0]), self = Index(counts[1]);
+    Real counts[3] = {Real(owned), Real(self), Real(constraint)};
+    _comm.sum(counts, 3);
+    owned = Index(counts[0]), self = Index(counts[1]), constraint = Index(counts[2]);
   }
   _max_count = std::max(_max_count, owned);
   _self_contact_planes = self;
+  _constraint_planes = constraint;
 }
 
 Real ContactSystem::firstTimeStep(const NodeFields &nodes, const ElementFields &elements,

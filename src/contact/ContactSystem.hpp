@@ -68,12 +68,14 @@ public:
   explicit ContactSystem(const ContactMeshInput &in);
 
   /// \brief True on the cycles that search for new CPs: cycle 0, then every search_interval;
-  /// with `search_gap: motion` also the cycle planSearch found the contact nodes may have moved
-  /// a quarter of the gap since the last search (docs/theory.md 3.1a).
+  /// with `search_gap: motion` instead the cycles planSearch found the contact nodes may have
+  /// moved a quarter of the gap since the last search, or erosion exposed faces (docs/theory.md
+  /// 3.1a).
   bool searchDue(long cycle) const;
   /// \brief Step 3, first of all (collective in a decomposed run), with `search_gap: motion`:
   /// the contact nodes' fastest speed bounds their motion since the last search; a search is
-  /// due when the bound reaches a quarter of that search's gap, and then it sets the next gap.
+  /// due when the bound reaches a quarter of that search's gap (or faces were exposed), and
+  /// then it sets the next gap for search_interval cycles at the current speed.
   void planSearch(const NodeFields &nodes, Real dt, long cycle);
   /// \brief The velocities were set, not integrated (a part released, 2.4): the implicit CPs'
   /// predicted end-of-step velocities (10.6) do not describe how the mesh moved, so the next
@@ -248,7 +250,7 @@ private:
   FaceGeometryData _geom;
   FaceBins _bins;
   long _binned_cycle = -1;
-  bool _has_constraints = false, _has_explicit = false;
+  bool _has_explicit = false;
   bool _has_slide = false, _has_friction = false;
   std::vector<Index> _eroded;         ///< eroded elements, global ids, ascending (11.6)
   std::vector<Index> _eroded_pending; ///< ... eroded since the last search
@@ -256,8 +258,10 @@ private:
   Index _self_contact_planes = 0;     ///< self-contact CPs (11.5) since the last search, all ranks
   /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
   bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }
-  /// \brief Whether velocity-constraint CPs (ties, slide lines) may be live
-  bool constraintsLive() const { return _has_constraints || _self_contact_planes > 0; }
+  Index _constraint_planes = 0; ///< CPs of the velocity-constraint options, all ranks, ditto
+  /// \brief Whether the correction passes run (10.8): a CP of a velocity-constraint option on
+  /// some rank. Without one they would only solve for zero forces, at the cost of passes over every CP.
+  bool constraintsLive() const { return _constraint_planes > 0; }
   bool _has_sleepy = false;            ///< a sleepy surface: its CPs switch (releaseSleepy)
   bool _failure_from_elements = false; ///< ... on a measure of their elements, not the time
   IndexView _damage_slot;              ///< per material: its history slot of damage, or -1

@@ -233,8 +233,8 @@ struct ContactSpec
   long search_interval = 1;   ///< cycles between CP searches; 0 = once, at the first cycle
   int constraint_passes = 30; ///< sticky/slide-line solve iterations (docs/theory.md 10.8)
   Real search_gap = -1;       ///< largest gap at which a CP is created [m]; < 0: largest face size
-  /// `search_gap: motion`: the gap from the contact nodes' speed, and a search as soon as they
-  /// may have moved a quarter of it (docs/theory.md 3.1a)
+  /// `search_gap: motion`: the gap from the contact nodes' speed over search_interval cycles,
+  /// and a search whenever they may have moved a quarter of it (docs/theory.md 3.1a)
   bool search_gap_motion = false;
 };
 
