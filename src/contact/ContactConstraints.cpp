@@ -246,7 +246,10 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   if (sliding)
     boundSolve(nodes, dt);
   else
-    tieSolve(nodes, dt);
+  {
+    _tie_iterations += tieSolve(nodes, dt);
+    ++_tie_solves;
+  }
   if (_has_friction && sliding) // the slide lines' Coulomb friction, on their normal forces
     slideFriction(nodes, dt);
   // apply the forces: contact force, v*, CP totals

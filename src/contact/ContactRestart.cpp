@@ -146,11 +146,11 @@ void ContactSystem::saveState(RestartWriter &out, MPI_Comm comm,
   }
   const std::vector<double> planes = sortedByKeys(gatherToRoot(rows, comm), width);
   out.put("contact.scalars",
-          std::vector<double>{_joint_work, _joint_work_peak, _joint_work_gross, _stored_peak,
-                              _slide_work, _slide_work_peak, _dt_prev, double(_max_count),
-                              double(_binned_cycle), _geom.h_max,
-                              double(planes.size() / size_t(width)), _slide_carried, _motion,
-                              _motion_gap, double(_searches)});
+          std::vector<double>{
+              _joint_work, _joint_work_peak, _joint_work_gross, _stored_peak, _slide_work,
+              _slide_work_peak, _dt_prev, double(_max_count), double(_binned_cycle), _geom.h_max,
+              double(planes.size() / size_t(width)), _slide_carried, _motion, _motion_gap,
+              double(_searches), double(_tie_solves), double(_tie_iterations)});
   out.put("contact.planes", planes);
   // the same lists on every rank (elementsEroded())
   out.put("contact.eroded", std::vector<double>(_eroded.begin(), _eroded.end()));
@@ -181,7 +181,7 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
                               const std::vector<Index> &node_global)
 {
   const std::string where = "restart file '" + in.path() + "': ";
-  const std::vector<double> sc = in.reals("contact.scalars", 15);
+  const std::vector<double> sc = in.reals("contact.scalars", 17);
   _joint_work = sc[0];
   _joint_work_peak = sc[1];
   _joint_work_gross = sc[2];
@@ -197,6 +197,8 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
   _motion = sc[12];
   _motion_gap = sc[13];
   _searches = long(sc[14]);
+  _tie_solves = long(sc[15]);
+  _tie_iterations = long(sc[16]);
   const int width = planeRowWidth(_cp);
   const std::vector<double> rows = in.reals("contact.planes", n * width);
 

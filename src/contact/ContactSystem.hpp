@@ -172,6 +172,10 @@ public:
   Index maxCount() const { return _max_count; }
   /// \brief Searches for new CPs so far (3.1, 3.1a), set-up ones excluded.
   long searches() const { return _searches; }
+  /// \brief Cycles whose ties were solved alone by conjugate gradients (10.8), and their
+  /// iterations in all (the same on every rank).
+  long tieSolves() const { return _tie_solves; }
+  long tieIterations() const { return _tie_iterations; }
   const ContactFaceData &faces() const { return _faces; }
   const CommonPlaneData &planes() const { return _cp; }
   const std::vector<ContactFaceInfo> &faceInfo() const { return _info; }
@@ -258,6 +262,7 @@ private:
   Index _self_contact_planes = 0;     ///< self-contact CPs (11.5) since the last search, all ranks
   /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
   bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }
+  long _tie_solves = 0, _tie_iterations = 0; ///< see tieSolves()
   Index _constraint_planes = 0; ///< CPs of the velocity-constraint options, all ranks, ditto
   /// \brief Whether the correction passes run (10.8): a CP of a velocity-constraint option on
   /// some rank. Without one they would only solve for zero forces, at the cost of passes over every CP.

@@ -18,7 +18,7 @@ namespace scpdyn
 {
 
 /// \brief The version of the layout Solver::saveState() writes; raise it when that changes.
-constexpr long kRestartFormatVersion = 5;
+constexpr long kRestartFormatVersion = 6;
 
 class RestartWriter
 {

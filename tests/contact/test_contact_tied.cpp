@@ -244,3 +244,25 @@ TEST(ContactTied, ImbricateMeshMatchesOneMesh)
     RecordProperty(geometry + "_copies_apart", sci(e.worst_copy));
   }
 }
+
+// summary.json's tie_iterations_mean (docs/input.md) is the conjugate-gradient iterations of an
+// average tie solve: the same count the solver gives every cycle, bounded by constraint_passes,
+// and far from it on a stack whose ties converge (300 passes allowed; 80-90 taken).
+TEST(ContactTied, TieIterationsAreCountedPerSolve)
+{
+  const std::string deck =
+      readText(std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/brick_stack_3d_sticky.yaml");
+  const std::string dir = contactWorkDir("tie_iterations");
+  Solver s(deckFromText(deck, "tie_iterations"));
+  s.run(dir);
+  const std::string summary = readText(dir + "/summary.json");
+  const size_t at = summary.find("\"tie_iterations_mean\":");
+  ASSERT_NE(at, std::string::npos);
+  const double mean = std::stod(summary.substr(summary.find(':', at) + 1));
+  std::printf("[tie iterations] %.2f a solve over %ld solves (limit 300)\n", mean,
+              s.contact()->tieSolves());
+  EXPECT_EQ(s.contact()->tieSolves(), 80);
+  EXPECT_NEAR(mean, double(s.contact()->tieIterations()) / 80.0, 1e-12 * mean);
+  EXPECT_GT(mean, 1.0);
+  EXPECT_LT(mean, 300.0);
+}
