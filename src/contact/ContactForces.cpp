@@ -62,9 +62,17 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
   const Real half_dt = 0.5 * dt;
   const TieWeights tie = _tie;
   const NodeAdder add = nodeAdder();
+  const bool gather = _gather_forces;
+  if (gather && _share_generation != _cp_generation)
+    buildShareRows();
+  const VectorView share = _node_share;
   Kokkos::parallel_for(
       "scpdyn::contact::planeForces", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p) {
+        if (gather) // a CP that returns before its force gives its nodes nothing
+          for (Index q = shareSlot(p, 0, 0); q < shareSlot(p + 1, 0, 0); ++q)
+            for (int d = 0; d < 3; ++d)
+              share(q, d) = 0;
         const Index f1 = cp.face1(p), f2 = cp.face2(p);
         const JointParams &P = cp.params(p);
         CpState s = cp.state(p);
@@ -183,11 +191,16 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
           Fv[d] = r.Fn * n[d] + r.Fs[d];
           cp.force(p, d) = Fv[d];
         }
-        scatterForce(F, cp, p, Fv, fc, no_dv, mass, bc, dt, dim, add);
+        if (gather)
+          shareForce(F, cp, p, Fv, share, dim);
+        else
+          scatterForce(F, cp, p, Fv, fc, no_dv, mass, bc, dt, dim, add);
         cp.stored(p) = scpdyn::storedEnergy(P, s.Fn, s.Fs, s.umax, g.Ac);
         cp.status(p) = s.open ? CpOpen : r.slipped ? CpSlip : CpStick;
         cp.state(p) = s;
       });
+  if (gather)
+    assembleShares();
 }
 
 ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const BoundaryConditions &bc,

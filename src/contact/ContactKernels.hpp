@@ -127,6 +127,32 @@ KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonP
   }
 }
 
+/// The slot of face node `a` of side `side` (0: face 1, 1: face 2) of CP p in the CPs' nodal
+/// shares (ContactSystem::_share, the deterministic assembly of shareForce()).
+KOKKOS_INLINE_FUNCTION Index shareSlot(Index p, int side, int a)
+{
+  return (2 * p + side) * kMaxFaceNodes + a;
+}
+
+/// scatterForce() without the adds: the share w F of every node of CP p's own faces into its
+/// slot of `share` (zero for a ghost face and the components past dim), so that the nodes can
+/// sum them in a fixed order, whatever the thread count (ContactSystem::assembleShares()).
+KOKKOS_INLINE_FUNCTION void shareForce(const ContactFaceData &F, const CommonPlaneData &cp, Index p,
+                                       const Real Fv[3], const VectorView &share, int dim)
+{
+  for (int side = 0; side < 2; ++side)
+  {
+    const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
+    const Real sign = side == 0 ? -1.0 : 1.0;
+    for (int a = 0; a < F.num_nodes(f); ++a)
+    {
+      const Real w = sign * (side == 0 ? cp.w1(p, a) : cp.w2(p, a));
+      for (int d = 0; d < 3; ++d)
+        share(shareSlot(p, side, a), d) = F.ghost(f) || d >= dim ? 0.0 : w * Fv[d];
+    }
+  }
+}
+
 /// True on the one rank that counts CP p in sums over CPs (energies, dot products, outputs):
 /// the rank of face 1 (the face with the smaller key); every CP in serial.
 KOKKOS_INLINE_FUNCTION bool ownsPlane(const ContactFaceData &F, const CommonPlaneData &cp, Index p)

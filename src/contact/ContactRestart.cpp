@@ -230,6 +230,7 @@ void ContactSystem::loadState(const RestartReader &in, MPI_Comm comm,
 
   const Index m = Index(take.size());
   _cp = allocatePlanes(m);
+  ++_cp_generation;
   auto surface = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.surface);
   auto part = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.part);
   auto fparams = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.params);

@@ -46,6 +46,8 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   _search_gap = deck.contact.search_gap;
   _gap_from_motion = deck.contact.search_gap_motion;
   _tie_points = _dim == 2 ? 2 : 1;
+  // one thread adds in CP order already (nodeAdder())
+  _gather_forces = deck.scatter == ScatterMode::Gather && ExecSpace().concurrency() > 1;
   for (const auto &p : in.mesh->parts)
     _part_names.push_back(p.name);
   _faces = buildContactFaces(in, _info);
@@ -73,6 +75,7 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   _fc = VectorView("contact_force", n);
   _impulse = VectorView("contact_impulse", n);
   _cp = allocatePlanes(0);
+  ++_cp_generation;
 }
 
 void ContactSystem::declareLateNodes(LateNodes &late) const
@@ -142,6 +145,7 @@ void ContactSystem::detect(const NodeFields &nodes, Real dt)
         cp.state(q) = initialCpState(u0, g.n, g.Ac); // (12), (D12)
       });
   _cp = cp;
+  ++_cp_generation;
   countPlanes();
 }
 
@@ -211,6 +215,7 @@ Real ContactSystem::firstTimeStep(const NodeFields &nodes, const ElementFields &
       },
       Kokkos::Min<Real>(dt_min));
   _cp = allocatePlanes(0);
+  ++_cp_generation;
   _binned_cycle = -1;
   _max_count = max_count;
   return dt_min;

@@ -263,6 +263,19 @@ private:
   /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
   bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }
   long _tie_solves = 0, _tie_iterations = 0; ///< see tieSolves()
+  /// \brief The joint CPs' forces summed at the nodes in a fixed order (numerics.scatter
+  /// gather, more than one thread): each CP writes its nodes' shares into its slots
+  /// (shareSlot()), and each contact node adds its slots in ascending CP order, the order of
+  /// the one-thread plain adds, so the bits are those of one thread at any thread count.
+  /// Guarded by Cli.GatherContactIsBitwiseThreadIndependent.
+  bool _gather_forces = false;
+  VectorView _node_share;       ///< per slot: a node's share of its CP's force [N]
+  IndexView _share_offsets;     ///< per contact node (nodes_used) + 1: its slots' range
+  IndexView _share_slots;       ///< slots, ascending within each node's range
+  long _cp_generation = 0;      ///< bumped whenever the CP list is replaced
+  long _share_generation = -1;  ///< the generation _share_offsets/_share_slots describe
+  void buildShareRows();        ///< the nodes' slot lists of the current CP list (host)
+  void assembleShares();        ///< fc += each node's slots, in order
   Index _constraint_planes = 0; ///< CPs of the velocity-constraint options, all ranks, ditto
   /// \brief Whether the correction passes run (10.8): a CP of a velocity-constraint option on
   /// some rank. Without one they would only solve for zero forces, at the cost of passes over every CP.
