@@ -98,14 +98,20 @@ struct NodeAdder
 /// The adder of this process's execution space: plain on one thread, atomic otherwise.
 inline NodeAdder nodeAdder() { return NodeAdder{ExecSpace().concurrency() == 1}; }
 
-/// (17)-(18): -w1 F on the nodes of face 1, +w2 F on face 2; with `dv`, also the velocity
-/// change dt F w / M of every node component that is not prescribed. A ghost face gets nothing:
-/// its own rank computes the same CP and applies that side (parallel rules of 2.2).
-KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonPlaneData &cp,
-                                         Index p, const Real Fv[3], const VectorView &fc,
-                                         const VectorView &dv, const RealView &mass,
-                                         const DeviceView<int *[3]> &bc, Real dt, int dim,
-                                         const NodeAdder &add)
+/// The slot of face node `a` of side `side` (0: face 1, 1: face 2) of CP p in the CPs' nodal
+/// shares (ContactSystem::_node_share, the deterministic assembly of shareForce()).
+KOKKOS_INLINE_FUNCTION Index shareSlot(Index p, int side, int a)
+{
+  return (2 * p + side) * kMaxFaceNodes + a;
+}
+
+/// Calls visit(slot, node, w) for every node of CP p's own faces with its signed weight of the
+/// CP force (17)-(18), -w1 on face 1 and +w2 on face 2, side by side and node by node (slot:
+/// shareSlot()). A ghost face is skipped: its own rank computes the same CP and applies that
+/// side (parallel rules of 2.2).
+template <class Visit>
+KOKKOS_INLINE_FUNCTION void forEachOwnNodeWeight(const ContactFaceData &F,
+                                                 const CommonPlaneData &cp, Index p, Visit &&visit)
 {
   for (int side = 0; side < 2; ++side)
   {
@@ -114,43 +120,39 @@ KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonP
     if (F.ghost(f))
       continue;
     for (int a = 0; a < F.num_nodes(f); ++a)
-    {
-      const Index k = F.nodes(f, a);
-      const Real w = sign * (side == 0 ? cp.w1(p, a) : cp.w2(p, a));
-      for (int d = 0; d < dim; ++d)
-      {
-        add(&fc(k, d), w * Fv[d]);
-        if (dv.extent(0) > 0 && bc(k, d) < 0)
-          add(&dv(k, d), w * Fv[d] * dt / mass(k));
-      }
-    }
+      visit(shareSlot(p, side, a), F.nodes(f, a), sign * (side == 0 ? cp.w1(p, a) : cp.w2(p, a)));
   }
 }
 
-/// The slot of face node `a` of side `side` (0: face 1, 1: face 2) of CP p in the CPs' nodal
-/// shares (ContactSystem::_share, the deterministic assembly of shareForce()).
-KOKKOS_INLINE_FUNCTION Index shareSlot(Index p, int side, int a)
+/// (17)-(18): -w1 F on the nodes of face 1, +w2 F on face 2; with `dv`, also the velocity
+/// change dt F w / M of every node component that is not prescribed. A ghost face gets nothing.
+KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonPlaneData &cp,
+                                         Index p, const Real Fv[3], const VectorView &fc,
+                                         const VectorView &dv, const RealView &mass,
+                                         const DeviceView<int *[3]> &bc, Real dt, int dim,
+                                         const NodeAdder &add)
 {
-  return (2 * p + side) * kMaxFaceNodes + a;
+  forEachOwnNodeWeight(F, cp, p, [&](Index, Index k, Real w) {
+    for (int d = 0; d < dim; ++d)
+    {
+      add(&fc(k, d), w * Fv[d]);
+      if (dv.extent(0) > 0 && bc(k, d) < 0)
+        add(&dv(k, d), w * Fv[d] * dt / mass(k));
+    }
+  });
 }
 
 /// scatterForce() without the adds: the share w F of every node of CP p's own faces into its
-/// slot of `share` (zero for a ghost face and the components past dim), so that the nodes can
-/// sum them in a fixed order, whatever the thread count (ContactSystem::assembleShares()).
+/// slot of `share`, so that the nodes can sum them in a fixed order, whatever the thread count
+/// (ContactSystem::assembleShares()). The slots of ghost faces, of nodes past the face's count
+/// and of components past dim keep the zeros the caller wrote.
 KOKKOS_INLINE_FUNCTION void shareForce(const ContactFaceData &F, const CommonPlaneData &cp, Index p,
                                        const Real Fv[3], const VectorView &share, int dim)
 {
-  for (int side = 0; side < 2; ++side)
-  {
-    const Index f = side == 0 ? cp.face1(p) : cp.face2(p);
-    const Real sign = side == 0 ? -1.0 : 1.0;
-    for (int a = 0; a < F.num_nodes(f); ++a)
-    {
-      const Real w = sign * (side == 0 ? cp.w1(p, a) : cp.w2(p, a));
-      for (int d = 0; d < 3; ++d)
-        share(shareSlot(p, side, a), d) = F.ghost(f) || d >= dim ? 0.0 : w * Fv[d];
-    }
-  }
+  forEachOwnNodeWeight(F, cp, p, [&](Index slot, Index, Real w) {
+    for (int d = 0; d < dim; ++d)
+      share(slot, d) = w * Fv[d];
+  });
 }
 
 /// True on the one rank that counts CP p in sums over CPs (energies, dot products, outputs):

@@ -46,8 +46,7 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   _search_gap = deck.contact.search_gap;
   _gap_from_motion = deck.contact.search_gap_motion;
   _tie_points = _dim == 2 ? 2 : 1;
-  // one thread adds in CP order already (nodeAdder())
-  _gather_forces = deck.scatter == ScatterMode::Gather && ExecSpace().concurrency() > 1;
+  _gather_forces = orderedAssembly(deck);
   for (const auto &p : in.mesh->parts)
     _part_names.push_back(p.name);
   _faces = buildContactFaces(in, _info);

@@ -296,6 +296,15 @@ struct Deck
   ContactSpec contact;
 };
 
+/// \brief `numerics.scatter: gather` on more than one thread: the assemblies that sum in a
+/// fixed order run (the element corners, ModelSetup.cpp; the joint CPs' node shares,
+/// ContactShares.cpp). On one thread plain adds in index order give their sums bit for bit, so
+/// they are skipped.
+inline bool orderedAssembly(const Deck &deck)
+{
+  return deck.scatter == ScatterMode::Gather && ExecSpace().concurrency() > 1;
+}
+
 /// \brief Parse and validate a deck; throws InputError naming key path and line.
 Deck parseDeck(const std::string &path);
 /// \brief Parse from a YAML string (tests); `path` only names the source in messages.

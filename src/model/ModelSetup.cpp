@@ -54,16 +54,6 @@ std::string setSuggestion(const std::string &name, const Sets &sets)
 
 namespace
 {
-/// `scatter: gather` with one thread: plain adds in element order give the corner gather's sums
-/// bit for bit (every node's corners are gathered in ascending element order from zero), so
-/// the corner array and the gather pass are skipped.
-bool cornerGather(const Deck &deck)
-{
-  return deck.scatter == ScatterMode::Gather && ExecSpace().concurrency() > 1;
-}
-} // namespace
-namespace
-{
 
 int materialIndex(const Deck &deck, const std::string &name)
 {
@@ -411,7 +401,7 @@ void ModelSetup::setupFields()
   Kokkos::deep_copy(_m.materials, h_materials);
 
   _m.elems.row_pack = markRowPacks(_m.elems, _m.groups);
-  if (cornerGather(_m.deck))
+  if (orderedAssembly(_m.deck))
     _m.corners = makeNodeCorners(_m.elems, _m.groups, num_nodes, ExecSpace().concurrency());
 }
 
@@ -422,7 +412,7 @@ void ModelSetup::setupNodeSweep()
 #if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
   const bool ordered = false; // no chunks on a device
 #else
-  const bool ordered = ExecSpace().concurrency() == 1 || cornerGather(_m.deck);
+  const bool ordered = ExecSpace().concurrency() == 1 || orderedAssembly(_m.deck);
 #endif
   if (_m.deck.node_update != NodeUpdateMode::Fused || !ordered)
     return;
@@ -440,7 +430,7 @@ void ModelSetup::setupNodeSweep()
     late.declareFlagged("nodes of other ranks", not_owned);
   }
   _m.sweep = makeNodeSweep(_m.elems, _m.groups, _m.nodes,
-                           cornerGather(_m.deck) ? _m.corners.chunks : 1, late.mask());
+                           orderedAssembly(_m.deck) ? _m.corners.chunks : 1, late.mask());
   _m.sweep_nodes =
       _m.dd ? long(allReduceSum((long long)_m.sweep.early_nodes, _m.comm)) : _m.sweep.early_nodes;
 }
@@ -748,7 +738,7 @@ void ModelSetup::setupInitialState()
   _m.controls.hourglass_coefficient = _m.deck.hourglass_coefficient;
   _m.controls.q_linear = _m.deck.bulk_viscosity_linear;
   _m.controls.q_quadratic = _m.deck.bulk_viscosity_quadratic;
-  _m.controls.gather = cornerGather(_m.deck);
+  _m.controls.gather = orderedAssembly(_m.deck);
   for (const MaterialParams &m : _m.materials_host)
     _m.controls.erosion = _m.controls.erosion || m.erosion.active;
 
