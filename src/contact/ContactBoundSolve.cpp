@@ -114,6 +114,9 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
   const int dim = _dim, Q = _tie_points;
   const Index rows = cp.count * Q;
   const NodeAdder add = nodeAdder();
+  const NodeSlotRows *slots = tieSlotRows(); // the column sums in a fixed order, or atomic
+  const bool gather = slots != nullptr;
+  const VectorView share = gather ? slots->share : VectorView();
   Kokkos::parallel_for(
       "scpdyn::contact::boundZero", Kokkos::RangePolicy<ExecSpace>(0, Index(used.extent(0))),
       KOKKOS_LAMBDA(const Index i) {
@@ -125,6 +128,10 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
       "scpdyn::contact::boundRows", Kokkos::RangePolicy<ExecSpace>(0, rows),
       KOKKOS_LAMBDA(const Index c, Real &m) {
         const Index p = c / Q;
+        if (gather)
+          for (Index q = shareSlot(c, 0, 0); q < shareSlot(c + 1, 0, 0); ++q)
+            for (int d = 0; d < 3; ++d)
+              share(q, d) = 0;
         if (mode(c) == TieNone)
           return;
         Real sum[3] = {0, 0, 0}; // per component (full rows), or along n (normal rows): sum[0]
@@ -143,7 +150,11 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
                                    ? S(c, d) * b
                                    : S(c, d) * b * contact_math::abs(cp.normal(p, d));
                 sum[mode(c) == TieFull ? d : 0] += e;
-                if (!F.ghost(f))
+                if (F.ghost(f))
+                  continue;
+                if (gather)
+                  share(shareSlot(c, side, a), d) = e;
+                else
                   add(&dv(k, d), e);
               }
           }
@@ -152,6 +163,8 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
           m = contact_math::max(m, sum[d]);
       },
       Kokkos::Max<Real>(row_max));
+  if (gather)
+    assembleSlots(*slots, dv, true);
   if (_comm.sum_nodes) // a node's column spans the rows of every rank
     _comm.sum_nodes(dv);
   Real col_max = 0;
@@ -186,10 +199,12 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
 
   // scale, targets b^ = S b, start at X = 0 (feasible): g = -b^
   // scale: of the round-off stop; cold: |projected gradient|^2 at X = 0, of the relative stop
-  Real scale = 0, cold = 0;
+  // every sum of the solve is exact (ExactSum.hpp): its bits do not depend on the threads or
+  // the ranks that add its terms
+  ExactSums<2> setup;
   Kokkos::parallel_reduce(
       "scpdyn::contact::boundSetup", range,
-      KOKKOS_LAMBDA(const Index c, Real &sum, Real &g0) {
+      KOKKOS_LAMBDA(const Index c, ExactSums<2> &acc) {
         const Index p = c / Q;
         Real D[3], Dn, b[3] = {B(c, 0), B(c, 1), B(c, 2)}, wv[3] = {W(c, 0), W(c, 1), W(c, 2)};
         tieDiagonal(F, cp, tw, c, p, mass, bc, dt, dim, D, Dn);
@@ -209,39 +224,38 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
                         ? share * cp.normal(p, d) / S(c, d)
                         : 0.0;
           if (counted)
-            sum += S(c, d) * wv[d] * S(c, d) * wv[d];
+            acc.add(0, S(c, d) * wv[d] * S(c, d) * wv[d]);
         }
         const Real bn = S(c, 0) * along(cp, p, b);
         if (counted)
-          g0 += mode(c) == TieFull
-                    ? S(c, 0) * b[0] * S(c, 0) * b[0] + S(c, 1) * b[1] * S(c, 1) * b[1] +
-                          S(c, 2) * b[2] * S(c, 2) * b[2]
-                : mode(c) == TieNormal ? contact_math::max(bn, 0.0) * contact_math::max(bn, 0.0)
-                                       : 0.0;
+          acc.add(1, mode(c) == TieFull
+                         ? S(c, 0) * b[0] * S(c, 0) * b[0] + S(c, 1) * b[1] * S(c, 1) * b[1] +
+                               S(c, 2) * b[2] * S(c, 2) * b[2]
+                     : mode(c) == TieNormal
+                         ? contact_math::max(bn, 0.0) * contact_math::max(bn, 0.0)
+                         : 0.0);
       },
-      scale, cold);
-  {
-    Real s2[2] = {scale, cold};
-    if (_comm.sum)
-      _comm.sum(s2, 2);
-    scale = s2[0];
-    cold = s2[1];
-  }
+      ExactSumsReducer<2>(setup));
+  Real s2[2];
+  exactTotals(setup, s2);
+  const Real scale = s2[0], cold = s2[1];
   // g = A y - b^ at the warm start; f(y) = 1/2 y.(g - b^) must not exceed f(0) = 0 (the start
   // would then give the mesh energy): else start from 0
   tieApply(nodes, dt, X, AP);
-  Real f0 = 0;
+  ExactSums<1> start;
   Kokkos::parallel_reduce(
       "scpdyn::contact::boundStart", range,
-      KOKKOS_LAMBDA(const Index c, Real &sum) {
+      KOKKOS_LAMBDA(const Index c, ExactSums<1> &acc) {
         for (int d = 0; d < 3; ++d)
           G(c, d) = AP(c, d) - Bh(c, d);
         if (ownsPlane(F, cp, c / Q))
           for (int d = 0; d < 3; ++d)
-            sum += 0.5 * X(c, d) * (G(c, d) - Bh(c, d));
+            acc.add(0, 0.5 * X(c, d) * (G(c, d) - Bh(c, d)));
       },
-      f0);
-  if (!(globalSum(f0) <= 0))
+      ExactSumsReducer<1>(start));
+  Real f0;
+  exactTotals(start, &f0);
+  if (!(f0 <= 0))
     Kokkos::parallel_for(
         "scpdyn::contact::boundCold", range, KOKKOS_LAMBDA(const Index c) {
           for (int d = 0; d < 3; ++d)
@@ -268,9 +282,10 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
         });
   };
   auto norms = [&](Real n[3]) {
+    ExactSums<3> acc3;
     Kokkos::parallel_reduce(
         "scpdyn::contact::boundNorms", range,
-        KOKKOS_LAMBDA(const Index c, Real &phi2, Real &beta2, Real &phit_phi) {
+        KOKKOS_LAMBDA(const Index c, ExactSums<3> &acc) {
           const Index p = c / Q;
           if (!ownsPlane(F, cp, p))
             return;
@@ -279,32 +294,31 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
           gradientParts(cp, p, mode(c), x, g, abar, phi, beta, phit);
           for (int d = 0; d < 3; ++d)
           {
-            phi2 += phi[d] * phi[d];
-            beta2 += beta[d] * beta[d];
-            phit_phi += phit[d] * phi[d];
+            acc.add(0, phi[d] * phi[d]);
+            acc.add(1, beta[d] * beta[d]);
+            acc.add(2, phit[d] * phi[d]);
           }
         },
-        n[0], n[1], n[2]);
-    if (_comm.sum)
-      _comm.sum(n, 3);
+        ExactSumsReducer<3>(acc3));
+    exactTotals(acc3, n);
   };
   // pAp and g.p of direction P (AP = A P already)
   auto curvature = [&](Real &pap, Real &gp) {
-    Real s[2] = {0, 0};
+    ExactSums<2> acc2;
     Kokkos::parallel_reduce(
         "scpdyn::contact::boundCurvature", range,
-        KOKKOS_LAMBDA(const Index c, Real &a, Real &b) {
+        KOKKOS_LAMBDA(const Index c, ExactSums<2> &acc) {
           if (!ownsPlane(F, cp, c / Q))
             return;
           for (int d = 0; d < 3; ++d)
           {
-            a += Pv(c, d) * AP(c, d);
-            b += G(c, d) * Pv(c, d);
+            acc.add(0, Pv(c, d) * AP(c, d));
+            acc.add(1, G(c, d) * Pv(c, d));
           }
         },
-        s[0], s[1]);
-    if (_comm.sum)
-      _comm.sum(s, 2);
+        ExactSumsReducer<2>(acc2));
+    Real s[2];
+    exactTotals(acc2, s);
     pap = s[0];
     gp = s[1];
   };
@@ -363,10 +377,10 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
       if (alpha_cg < alpha_f)
       { // conjugate gradient step
         step(alpha_cg);
-        Real phi_ap = 0;
+        ExactSums<1> conj;
         Kokkos::parallel_reduce(
             "scpdyn::contact::boundConjugate", range,
-            KOKKOS_LAMBDA(const Index c, Real &sum) {
+            KOKKOS_LAMBDA(const Index c, ExactSums<1> &acc) {
               const Index p = c / Q;
               if (!ownsPlane(F, cp, p))
                 return;
@@ -374,10 +388,11 @@ int ContactSystem::boundSolve(const NodeFields &nodes, Real dt)
               Real phi[3], beta[3], phit[3];
               gradientParts(cp, p, mode(c), x, g, abar, phi, beta, phit);
               for (int d = 0; d < 3; ++d)
-                sum += phi[d] * AP(c, d);
+                acc.add(0, phi[d] * AP(c, d));
             },
-            phi_ap);
-        phi_ap = globalSum(phi_ap);
+            ExactSumsReducer<1>(conj));
+        Real phi_ap;
+        exactTotals(conj, &phi_ap);
         const Real gamma = phi_ap / pap;
         Kokkos::parallel_for(
             "scpdyn::contact::boundDirection", range, KOKKOS_LAMBDA(const Index c) {

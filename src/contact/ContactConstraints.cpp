@@ -35,6 +35,22 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
   auto mode = _tie_mode;
   const int dim = _dim, Q = _tie_points;
   const NodeAdder add = nodeAdder();
+  if (const NodeSlotRows *slots = tieSlotRows())
+  { // in a fixed order (ContactShares.cpp)
+    auto share = slots->share;
+    Kokkos::parallel_for(
+        "scpdyn::contact::tieShares", Kokkos::RangePolicy<ExecSpace>(0, cp.count * Q),
+        KOKKOS_LAMBDA(const Index c) {
+          const bool none = mode(c) == TieNone;
+          const Real f[3] = {none ? 0.0 : force(c, 0), none ? 0.0 : force(c, 1),
+                             none ? 0.0 : force(c, 2)};
+          rowShare(F, cp, tw, c, c / Q, f, share, true, mass, bc, dt, dim);
+        });
+    assembleSlots(*slots, dv, true);
+    if (_comm.sum_nodes)
+      _comm.sum_nodes(dv);
+    return;
+  }
   Kokkos::parallel_for(
       "scpdyn::contact::tieZero", Kokkos::RangePolicy<ExecSpace>(0, Index(used.extent(0))),
       KOKKOS_LAMBDA(const Index i) {
@@ -67,10 +83,12 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
   const Index rows = cp.count * Q;
   auto W = _cg_w;
   auto diag = _cg_diag;
-  Real sums[2] = {0, 0}; // r.z, and the same norm of the face velocities themselves
+  // every sum of the solve is exact (ExactSum.hpp): its bits do not depend on the threads or
+  // the ranks that add its terms
+  ExactSums<2> setup; // r.z, and the same norm of the face velocities themselves
   Kokkos::parallel_reduce(
       "scpdyn::contact::tieSetup", Kokkos::RangePolicy<ExecSpace>(0, rows),
-      KOKKOS_LAMBDA(const Index c, Real &sum, Real &scale) {
+      KOKKOS_LAMBDA(const Index c, ExactSums<2> &acc) {
         const Index p = c / Q;
         Real r[3] = {B(c, 0), B(c, 1), B(c, 2)}, z[3], D[3], Dn, zv[3];
         Real wv[3] = {W(c, 0), W(c, 1), W(c, 2)};
@@ -90,12 +108,12 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
           Z(c, d) = z[d];
           Pv(c, d) = z[d];
           if (counted)
-            sum += r[d] * z[d], scale += wv[d] * zv[d];
+            acc.add(0, r[d] * z[d]), acc.add(1, wv[d] * zv[d]);
         }
       },
-      sums[0], sums[1]);
-  if (_comm.sum)
-    _comm.sum(sums, 2);
+      ExactSumsReducer<2>(setup));
+  Real sums[2];
+  exactTotals(setup, sums);
   Real rz = sums[0];
   // Stop at 1e-10 of the initial residual, or where the relative velocity left is round-off of
   // the face velocities (1e-13 of them): below that the targets are noise, and on a redundant
@@ -105,10 +123,10 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
   for (; it < _passes && rz > rz_stop && rz > 0; ++it)
   {
     tieScatter(nodes, dt, Pv);
-    Real pap = 0;
+    ExactSums<1> pap_sum;
     Kokkos::parallel_reduce(
         "scpdyn::contact::tieApply", Kokkos::RangePolicy<ExecSpace>(0, rows),
-        KOKKOS_LAMBDA(const Index c, Real &sum) {
+        KOKKOS_LAMBDA(const Index c, ExactSums<1> &acc) {
           const Index p = c / Q;
           Real V1[3], V2[3], ap[3];
           rowVelocity(F, cp, tw, c, p, 0, dv, V1);
@@ -121,18 +139,19 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
           {
             AP(c, d) = ap[d];
             if (counted)
-              sum += Pv(c, d) * ap[d];
+              acc.add(0, Pv(c, d) * ap[d]);
           }
         },
-        pap);
-    pap = globalSum(pap);
+        ExactSumsReducer<1>(pap_sum));
+    Real pap;
+    exactTotals(pap_sum, &pap);
     if (!(pap > 0))
       break;
     const Real alpha = rz / pap;
-    Real rz_new = 0;
+    ExactSums<1> rz_sum;
     Kokkos::parallel_reduce(
         "scpdyn::contact::tieUpdate", Kokkos::RangePolicy<ExecSpace>(0, rows),
-        KOKKOS_LAMBDA(const Index c, Real &sum) {
+        KOKKOS_LAMBDA(const Index c, ExactSums<1> &acc) {
           const Index p = c / Q;
           Real r[3], z[3];
           for (int d = 0; d < 3; ++d)
@@ -148,11 +167,12 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
           {
             Z(c, d) = z[d];
             if (counted)
-              sum += r[d] * z[d];
+              acc.add(0, r[d] * z[d]);
           }
         },
-        rz_new);
-    rz_new = globalSum(rz_new);
+        ExactSumsReducer<1>(rz_sum));
+    Real rz_new;
+    exactTotals(rz_sum, &rz_new);
     const Real beta = rz_new / rz;
     rz = rz_new;
     Kokkos::parallel_for(
@@ -200,6 +220,9 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   const int dim = _dim, Q = _tie_points;
   const Index nused = Index(used.extent(0)), rows = cp.count * Q;
   const NodeAdder add = nodeAdder();
+  const NodeSlotRows *slots = tieSlotRows();
+  const bool gather = slots != nullptr;
+  const VectorView share = gather ? slots->share : VectorView();
   // the joint CPs' forces are part of what the constraints see; decomposed: their totals over
   // the ranks (fc holds this rank's faces only), summed in a copy so step 9b still sums parts
   VectorView joint = fc;
@@ -265,6 +288,10 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
       "scpdyn::contact::constraintFinish", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p) {
         const JointParams &P = cp.params(p);
+        if (gather) // a row without force gives its nodes nothing
+          for (Index q = shareSlot(p * Q, 0, 0); q < shareSlot((p + 1) * Q, 0, 0); ++q)
+            for (int d = 0; d < 3; ++d)
+              share(q, d) = 0;
         if (!isConstraint(P.option) || cp.status(p) == CpInactive)
           return;
         Real f[3] = {0, 0, 0}, Fn = 0;
@@ -275,7 +302,10 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
             continue;
           tied = true;
           const Real fr[3] = {X(c, 0), X(c, 1), X(c, 2)};
-          rowScatter(F, cp, tw, c, p, fr, fc, false, mass, bc, dt, dim, add);
+          if (gather)
+            rowShare(F, cp, tw, c, p, fr, share, false, mass, bc, dt, dim);
+          else
+            rowScatter(F, cp, tw, c, p, fr, fc, false, mass, bc, dt, dim, add);
           for (int d = 0; d < 3; ++d)
             f[d] += fr[d];
         }
@@ -303,6 +333,8 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
         if (!tied)
           cp.status(p) = CpOpen;
       });
+  if (gather)
+    assembleSlots(*slots, fc, false);
 }
 
 } // namespace scpdyn

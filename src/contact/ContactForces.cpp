@@ -63,9 +63,9 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
   const TieWeights tie = _tie;
   const NodeAdder add = nodeAdder();
   const bool gather = _gather_forces;
-  if (gather && _share_generation != _cp_generation)
+  if (gather && _share_rows.generation != _cp_generation)
     buildShareRows();
-  const VectorView share = _node_share;
+  const VectorView share = _share_rows.share;
   Kokkos::parallel_for(
       "scpdyn::contact::planeForces", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p) {

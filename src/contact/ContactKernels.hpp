@@ -99,7 +99,7 @@ struct NodeAdder
 inline NodeAdder nodeAdder() { return NodeAdder{ExecSpace().concurrency() == 1}; }
 
 /// The slot of face node `a` of side `side` (0: face 1, 1: face 2) of CP p in the CPs' nodal
-/// shares (ContactSystem::_node_share, the deterministic assembly of shareForce()).
+/// shares (ContactSystem::_share_rows, the deterministic assembly of shareForce()).
 KOKKOS_INLINE_FUNCTION Index shareSlot(Index p, int side, int a)
 {
   return (2 * p + side) * kMaxFaceNodes + a;

@@ -8,9 +8,11 @@
 #include "contact/ContactData.hpp"
 #include "contact/ContactSearch.hpp"
 #include "contact/ContactSetup.hpp"
+#include "core/ExactSum.hpp"
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -32,6 +34,8 @@ struct ContactComm
   /// Global sums (added in rank order, the same bits on every rank) and maximum.
   std::function<void(Real *, int)> sum;
   std::function<Real(Real)> max;
+  /// Integer sums over the ranks (the limbs of ExactSums: exact, so in any order).
+  std::function<void(std::int64_t *, int)> sum_exact;
 };
 
 /// \brief Host copy of the live CPs for output (one point per CP).
@@ -216,6 +220,16 @@ private:
   ContactFailure finish(const NodeFields &nodes, Real dt, long cycle, Real time);
   void resizeNodeArrays(size_t n);
   Real globalSum(Real local) const;
+  /// \brief The N sums of a reduction over every rank's rows, rounded once (ExactSum.hpp): the
+  /// same bits at any thread and rank count.
+  template <int N>
+  void exactTotals(ExactSums<N> &s, Real out[N]) const
+  {
+    if (_comm.sum_exact)
+      _comm.sum_exact(&s.word[0][0], N * ExactSums<N>::kWords);
+    for (int j = 0; j < N; ++j)
+      out[j] = s.value(j);
+  }
   /// \brief After a search or a restore: the CP count's peak and the self-contact CPs
   /// (collective in a decomposed run).
   void countPlanes();
@@ -263,18 +277,32 @@ private:
   /// \brief Whether slide-line CPs may be live: a slide-line surface, or self-contact
   bool slideLinesLive() const { return _has_slide || _self_contact_planes > 0; }
   long _tie_solves = 0, _tie_iterations = 0; ///< see tieSolves()
-  /// \brief The joint CPs' forces summed at the nodes in a fixed order (numerics.scatter
-  /// gather, more than one thread): each CP writes its nodes' shares into its slots
-  /// (shareSlot()), and each contact node adds its slots in ascending CP order, the order of
-  /// the one-thread plain adds, so the bits are those of one thread at any thread count.
-  /// Guarded by Cli.GatherContactIsBitwiseThreadIndependent.
+  /// \brief The contact forces summed at the nodes in a fixed order (numerics.scatter
+  /// gather, more than one thread): each joint CP, and each tie row of the velocity
+  /// constraints, writes its nodes' shares into its slots (shareSlot()), and each contact node
+  /// adds its slots in ascending CP or row order, the order of the one-thread plain adds, so
+  /// the bits are those of one thread at any thread count. Guarded by
+  /// Cli.GatherContactIsBitwiseThreadIndependent and Cli.GatherConstraintsAreBitwiseThreadIndependent.
   bool _gather_forces = false;
-  VectorView _node_share;       ///< per slot: a node's share of its CP's force [N]
-  IndexView _share_offsets;     ///< per contact node (nodes_used) + 1: its slots' range
-  IndexView _share_slots;       ///< slots, ascending within each node's range
-  long _cp_generation = 0;      ///< bumped whenever the CP list is replaced
-  long _share_generation = -1;  ///< the generation _share_offsets/_share_slots describe
-  void buildShareRows();        ///< the nodes' slot lists of the current CP list (host)
+  /// \brief Per contact node (nodes_used), the slots it sums in ascending order: of the CPs
+  /// (shareSlot(p, side, a)) or of the tie rows (shareSlot(c, side, a)), with the slots' values.
+  struct NodeSlotRows
+  {
+    VectorView share;     ///< per slot: a node's share [N, or m/s for velocity increments]
+    IndexView offsets;    ///< per contact node + 1: its slots' range
+    IndexView slots;      ///< slots, ascending within each node's range
+    long generation = -1; ///< the CP list (_cp_generation) they describe
+  };
+  NodeSlotRows _share_rows; ///< the joint CPs'
+  NodeSlotRows _tie_rows;   ///< the tie rows'
+  long _cp_generation = 0;  ///< bumped whenever the CP list is replaced
+  /// the nodes' slot lists of the current CP list, per_cp entries per CP (host)
+  void buildSlotRows(int per_cp, NodeSlotRows &rows);
+  void buildShareRows(); ///< _share_rows
+  /// out(k) = (from_zero ? 0 : out(k)) + each contact node's slots, in order
+  void assembleSlots(const NodeSlotRows &rows, const VectorView &out, bool from_zero);
+  /// the tie rows' slots, up to date, under _gather_forces; else null (atomic adds)
+  const NodeSlotRows *tieSlotRows();
   void assembleShares();        ///< fc += each node's slots, in order
   Index _constraint_planes = 0; ///< CPs of the velocity-constraint options, all ranks, ditto
   /// \brief Whether the correction passes run (10.8): a CP of a velocity-constraint option on

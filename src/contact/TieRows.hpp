@@ -55,14 +55,13 @@ KOKKOS_INLINE_FUNCTION void rowVelocity(const ContactFaceData &F, const CommonPl
     faceVelocityWith(F, cp.face2(p), tw.w2, c, v, V);
 }
 
-/// The force Fv of tie row c of CP p on its own faces' nodes: -w1 Fv on face 1, +w2 Fv on
-/// face 2, into `out` as a force (dt_over_mass = false) or a velocity change dt Fv w / M of the
-/// free components (true). A ghost face gets nothing: its own rank adds that side.
-KOKKOS_INLINE_FUNCTION void rowScatter(const ContactFaceData &F, const CommonPlaneData &cp,
-                                       const TieWeights &tw, Index c, Index p, const Real Fv[3],
-                                       const VectorView &out, bool dt_over_mass,
-                                       const RealView &mass, const DeviceView<int *[3]> &bc,
-                                       Real dt, int dim, const contact_kernels::NodeAdder &add)
+/// Calls visit(slot, node, w) for every node of tie row c's own faces (CP p) with its signed
+/// weight, -w1 on face 1 and +w2 on face 2, side by side and node by node (slot:
+/// shareSlot(c, side, a)). A ghost face is skipped: its own rank adds that side.
+template <class Visit>
+KOKKOS_INLINE_FUNCTION void forEachOwnRowWeight(const ContactFaceData &F, const CommonPlaneData &cp,
+                                                const TieWeights &tw, Index c, Index p,
+                                                Visit &&visit)
 {
   for (int side = 0; side < 2; ++side)
   {
@@ -71,16 +70,46 @@ KOKKOS_INLINE_FUNCTION void rowScatter(const ContactFaceData &F, const CommonPla
       continue;
     const Real sign = side == 0 ? -1.0 : 1.0;
     for (int a = 0; a < F.num_nodes(f); ++a)
-    {
-      const Index k = F.nodes(f, a);
-      const Real w = sign * (side == 0 ? tw.w1(c, a) : tw.w2(c, a));
-      for (int d = 0; d < dim; ++d)
-        if (!dt_over_mass)
-          add(&out(k, d), w * Fv[d]);
-        else if (bc(k, d) < 0)
-          add(&out(k, d), w * Fv[d] * dt / mass(k));
-    }
+      visit(contact_kernels::shareSlot(c, side, a), F.nodes(f, a),
+            sign * (side == 0 ? tw.w1(c, a) : tw.w2(c, a)));
   }
+}
+
+/// The force Fv of tie row c of CP p on its own faces' nodes: -w1 Fv on face 1, +w2 Fv on
+/// face 2, into `out` as a force (dt_over_mass = false) or a velocity change dt Fv w / M of the
+/// free components (true).
+KOKKOS_INLINE_FUNCTION void rowScatter(const ContactFaceData &F, const CommonPlaneData &cp,
+                                       const TieWeights &tw, Index c, Index p, const Real Fv[3],
+                                       const VectorView &out, bool dt_over_mass,
+                                       const RealView &mass, const DeviceView<int *[3]> &bc,
+                                       Real dt, int dim, const contact_kernels::NodeAdder &add)
+{
+  forEachOwnRowWeight(F, cp, tw, c, p, [&](Index, Index k, Real w) {
+    for (int d = 0; d < dim; ++d)
+      if (!dt_over_mass)
+        add(&out(k, d), w * Fv[d]);
+      else if (bc(k, d) < 0)
+        add(&out(k, d), w * Fv[d] * dt / mass(k));
+  });
+}
+
+/// rowScatter() without the adds: the share of every node of tie row c's own faces into its
+/// slot of `share`, every component written (zero where rowScatter adds nothing), so that the
+/// nodes can sum the rows in order (ContactSystem::assembleSlots). The slots of ghost faces and
+/// of nodes past a face's count are in no node's list.
+KOKKOS_INLINE_FUNCTION void rowShare(const ContactFaceData &F, const CommonPlaneData &cp,
+                                     const TieWeights &tw, Index c, Index p, const Real Fv[3],
+                                     const VectorView &share, bool dt_over_mass,
+                                     const RealView &mass, const DeviceView<int *[3]> &bc, Real dt,
+                                     int dim)
+{
+  forEachOwnRowWeight(F, cp, tw, c, p, [&](Index slot, Index k, Real w) {
+    for (int d = 0; d < 3; ++d)
+      share(slot, d) = d >= dim        ? 0.0
+                       : !dt_over_mass ? w * Fv[d]
+                       : bc(k, d) < 0  ? w * Fv[d] * dt / mass(k)
+                                       : 0.0;
+  });
 }
 
 /// Keep the constrained part of a CP vector: all of it (full tie), its normal part (normal

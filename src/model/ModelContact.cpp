@@ -69,6 +69,9 @@ void ModelSetup::setupContactGhosts()
   MPI_Comm comm = _m.comm;
   cc.sum = [comm](Real *v, int count) { allReduceSum(v, count, comm); };
   cc.max = [comm](Real v) { return allReduceMax(v, comm); };
+  cc.sum_exact = [comm](std::int64_t *v, int count) {
+    MPI_Allreduce(MPI_IN_PLACE, v, count, MPI_INT64_T, MPI_SUM, comm);
+  };
   _m.contact->setComm(cc);
 }
 

@@ -181,6 +181,21 @@ TEST(Cli, GatherContactIsBitwiseThreadIndependent)
   EXPECT_GE(expectSameGaugesAtOneAndTwoThreads(text, "wall_contact_gather"), 400u);
 }
 
+TEST(Cli, GatherConstraintsAreBitwiseThreadIndependent)
+{
+  // the velocity-constraint solves: their rows' nodal increments and forces summed in row order
+  // (ContactShares.cpp) and their dot products exact (core/ExactSum.hpp). Before, with atomic
+  // adds and thread-ordered sums, 1 and 2 threads parted by 1.0e-9 on the sticky stack and
+  // 4.8e-12 on the incline (the bound solve with friction)
+  const std::string dir = std::string(SCPDYN_SOURCE_DIR) + "/tests/parallel/decks/";
+  EXPECT_GE(expectSameGaugesAtOneAndTwoThreads(test::readText(dir + "brick_stack_3d_sticky.yaml"),
+                                               "stack_sticky_gather"),
+            40u);
+  EXPECT_GE(expectSameGaugesAtOneAndTwoThreads(test::readText(dir + "incline_friction_2d.yaml"),
+                                               "incline_gather"),
+            40u);
+}
+
 TEST(Cli, DashOWithoutADirectorySaysSo)
 {
   std::string err;
