@@ -114,7 +114,8 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
   const int dim = _dim, Q = _tie_points;
   const Index rows = cp.count * Q;
   const NodeAdder add = nodeAdder();
-  const NodeSlotRows *slots = tieSlotRows(); // the column sums in a fixed order, or atomic
+  const NodeSlotRows *slots =
+      slotRows(_tie_points, _tie_rows); // the column sums in a fixed order, or atomic
   const bool gather = slots != nullptr;
   const VectorView share = gather ? slots->share : VectorView();
   Kokkos::parallel_for(
@@ -129,9 +130,7 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
       KOKKOS_LAMBDA(const Index c, Real &m) {
         const Index p = c / Q;
         if (gather)
-          for (Index q = shareSlot(c, 0, 0); q < shareSlot(c + 1, 0, 0); ++q)
-            for (int d = 0; d < 3; ++d)
-              share(q, d) = 0;
+          clearShares(share, c, c + 1);
         if (mode(c) == TieNone)
           return;
         Real sum[3] = {0, 0, 0}; // per component (full rows), or along n (normal rows): sum[0]

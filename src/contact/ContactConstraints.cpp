@@ -35,7 +35,7 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
   auto mode = _tie_mode;
   const int dim = _dim, Q = _tie_points;
   const NodeAdder add = nodeAdder();
-  if (const NodeSlotRows *slots = tieSlotRows())
+  if (const NodeSlotRows *slots = slotRows(_tie_points, _tie_rows))
   { // in a fixed order (ContactShares.cpp)
     auto share = slots->share;
     Kokkos::parallel_for(
@@ -220,7 +220,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   const int dim = _dim, Q = _tie_points;
   const Index nused = Index(used.extent(0)), rows = cp.count * Q;
   const NodeAdder add = nodeAdder();
-  const NodeSlotRows *slots = tieSlotRows();
+  const NodeSlotRows *slots = slotRows(_tie_points, _tie_rows);
   const bool gather = slots != nullptr;
   const VectorView share = gather ? slots->share : VectorView();
   // the joint CPs' forces are part of what the constraints see; decomposed: their totals over
@@ -289,9 +289,7 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
       KOKKOS_LAMBDA(const Index p) {
         const JointParams &P = cp.params(p);
         if (gather) // a row without force gives its nodes nothing
-          for (Index q = shareSlot(p * Q, 0, 0); q < shareSlot((p + 1) * Q, 0, 0); ++q)
-            for (int d = 0; d < 3; ++d)
-              share(q, d) = 0;
+          clearShares(share, p * Q, (p + 1) * Q);
         if (!isConstraint(P.option) || cp.status(p) == CpInactive)
           return;
         Real f[3] = {0, 0, 0}, Fn = 0;

@@ -62,17 +62,14 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
   const Real half_dt = 0.5 * dt;
   const TieWeights tie = _tie;
   const NodeAdder add = nodeAdder();
-  const bool gather = _gather_forces;
-  if (gather && _share_rows.generation != _cp_generation)
-    buildShareRows();
-  const VectorView share = _share_rows.share;
+  const NodeSlotRows *rows = slotRows(1, _share_rows);
+  const bool gather = rows != nullptr;
+  const VectorView share = gather ? rows->share : VectorView();
   Kokkos::parallel_for(
       "scpdyn::contact::planeForces", Kokkos::RangePolicy<ExecSpace>(0, cp.count),
       KOKKOS_LAMBDA(const Index p) {
         if (gather) // a CP that returns before its force gives its nodes nothing
-          for (Index q = shareSlot(p, 0, 0); q < shareSlot(p + 1, 0, 0); ++q)
-            for (int d = 0; d < 3; ++d)
-              share(q, d) = 0;
+          clearShares(share, p, p + 1);
         const Index f1 = cp.face1(p), f2 = cp.face2(p);
         const JointParams &P = cp.params(p);
         CpState s = cp.state(p);
@@ -200,7 +197,7 @@ void ContactSystem::jointForces(const NodeFields &nodes, Real dt)
         cp.state(p) = s;
       });
   if (gather)
-    assembleShares();
+    assembleSlots(*rows, fc, false);
 }
 
 ContactFailure ContactSystem::computeForces(const NodeFields &nodes, const BoundaryConditions &bc,

@@ -105,6 +105,15 @@ KOKKOS_INLINE_FUNCTION Index shareSlot(Index p, int side, int a)
   return (2 * p + side) * kMaxFaceNodes + a;
 }
 
+/// Zero the slots of entries [begin, end) (CPs, or tie rows): an entry that returns before
+/// writing its shares then gives its nodes nothing.
+KOKKOS_INLINE_FUNCTION void clearShares(const VectorView &share, Index begin, Index end)
+{
+  for (Index q = shareSlot(begin, 0, 0); q < shareSlot(end, 0, 0); ++q)
+    for (int d = 0; d < 3; ++d)
+      share(q, d) = 0;
+}
+
 /// Calls visit(slot, node, w) for every node of CP p's own faces with its signed weight of the
 /// CP force (17)-(18), -w1 on face 1 and +w2 on face 2, side by side and node by node (slot:
 /// shareSlot()). A ghost face is skipped: its own rank computes the same CP and applies that
@@ -144,7 +153,7 @@ KOKKOS_INLINE_FUNCTION void scatterForce(const ContactFaceData &F, const CommonP
 
 /// scatterForce() without the adds: the share w F of every node of CP p's own faces into its
 /// slot of `share`, so that the nodes can sum them in a fixed order, whatever the thread count
-/// (ContactSystem::assembleShares()). The slots of ghost faces, of nodes past the face's count
+/// (ContactSystem::assembleSlots()). The slots of ghost faces, of nodes past the face's count
 /// and of components past dim keep the zeros the caller wrote.
 KOKKOS_INLINE_FUNCTION void shareForce(const ContactFaceData &F, const CommonPlaneData &cp, Index p,
                                        const Real Fv[3], const VectorView &share, int dim)

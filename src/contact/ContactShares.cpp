@@ -58,8 +58,6 @@ void ContactSystem::buildSlotRows(int per_cp, NodeSlotRows &rows)
   rows.generation = _cp_generation;
 }
 
-void ContactSystem::buildShareRows() { buildSlotRows(1, _share_rows); }
-
 void ContactSystem::assembleSlots(const NodeSlotRows &rows, const VectorView &out, bool from_zero)
 {
   auto used = _faces.nodes_used;
@@ -79,15 +77,13 @@ void ContactSystem::assembleSlots(const NodeSlotRows &rows, const VectorView &ou
       });
 }
 
-void ContactSystem::assembleShares() { assembleSlots(_share_rows, _fc, false); }
-
-const ContactSystem::NodeSlotRows *ContactSystem::tieSlotRows()
+const ContactSystem::NodeSlotRows *ContactSystem::slotRows(int per_cp, NodeSlotRows &rows)
 {
   if (!_gather_forces)
     return nullptr;
-  if (_tie_rows.generation != _cp_generation)
-    buildSlotRows(_tie_points, _tie_rows);
-  return &_tie_rows;
+  if (rows.generation != _cp_generation)
+    buildSlotRows(per_cp, rows);
+  return &rows;
 }
 
 } // namespace scpdyn

@@ -293,17 +293,16 @@ private:
     IndexView slots;      ///< slots, ascending within each node's range
     long generation = -1; ///< the CP list (_cp_generation) they describe
   };
-  NodeSlotRows _share_rows; ///< the joint CPs'
-  NodeSlotRows _tie_rows;   ///< the tie rows'
+  NodeSlotRows _share_rows; ///< the joint CPs' (one entry per CP)
+  NodeSlotRows _tie_rows;   ///< the tie rows' (_tie_points entries per CP)
   long _cp_generation = 0;  ///< bumped whenever the CP list is replaced
   /// the nodes' slot lists of the current CP list, per_cp entries per CP (host)
   void buildSlotRows(int per_cp, NodeSlotRows &rows);
-  void buildShareRows(); ///< _share_rows
   /// out(k) = (from_zero ? 0 : out(k)) + each contact node's slots, in order
   void assembleSlots(const NodeSlotRows &rows, const VectorView &out, bool from_zero);
-  /// the tie rows' slots, up to date, under _gather_forces; else null (atomic adds)
-  const NodeSlotRows *tieSlotRows();
-  void assembleShares();        ///< fc += each node's slots, in order
+  /// `rows` (per_cp entries per CP) up to date for the current CP list, under _gather_forces;
+  /// else null (the atomic adds)
+  const NodeSlotRows *slotRows(int per_cp, NodeSlotRows &rows);
   Index _constraint_planes = 0; ///< CPs of the velocity-constraint options, all ranks, ditto
   /// \brief Whether the correction passes run (10.8): a CP of a velocity-constraint option on
   /// some rank. Without one they would only solve for zero forces, at the cost of passes over every CP.
