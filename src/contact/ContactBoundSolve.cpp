@@ -164,8 +164,7 @@ Real ContactSystem::tieOperatorBound(const NodeFields &nodes, Real dt)
       Kokkos::Max<Real>(row_max));
   if (gather)
     assembleSlots(*slots, dv, true);
-  if (_comm.sum_nodes) // a node's column spans the rows of every rank
-    _comm.sum_nodes(dv);
+  sumOverRanks(slots, dv); // a node's column spans the rows of every rank
   Real col_max = 0;
   Kokkos::parallel_reduce(
       "scpdyn::contact::boundColumns", Kokkos::RangePolicy<ExecSpace>(0, Index(used.extent(0))),

@@ -47,8 +47,7 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
           rowShare(F, cp, tw, c, c / Q, f, share, true, mass, bc, dt, dim);
         });
     assembleSlots(*slots, dv, true);
-    if (_comm.sum_nodes)
-      _comm.sum_nodes(dv);
+    sumOverRanks(slots, dv);
     return;
   }
   Kokkos::parallel_for(
@@ -65,8 +64,7 @@ void ContactSystem::tieScatter(const NodeFields &nodes, Real dt, const VectorVie
         const Real f[3] = {force(c, 0), force(c, 1), force(c, 2)};
         rowScatter(F, cp, tw, c, c / Q, f, dv, true, mass, bc, dt, dim, add);
       });
-  if (_comm.sum_nodes) // every copy of a node sees the increments of every rank's CPs
-    _comm.sum_nodes(dv);
+  sumOverRanks(nullptr, dv); // every copy of a node sees the increments of every rank's CPs
 }
 
 int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
@@ -83,8 +81,9 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
   const Index rows = cp.count * Q;
   auto W = _cg_w;
   auto diag = _cg_diag;
-  // every sum of the solve is exact (ExactSum.hpp): its bits do not depend on the threads or
-  // the ranks that add its terms
+  // every sum of the solve is exact (ExactSum.hpp) over the rows, each row's own terms added
+  // first in component order: its bits do not depend on the threads or the ranks that add
+  // the rows (one exact add a row, a third of the cost of one a term: perf/results/log.md)
   ExactSums<2> setup; // r.z, and the same norm of the face velocities themselves
   Kokkos::parallel_reduce(
       "scpdyn::contact::tieSetup", Kokkos::RangePolicy<ExecSpace>(0, rows),
@@ -101,15 +100,18 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
         project(cp, p, mode(c), dim, wv);
         precondition(cp, p, mode(c), D, Dn, wv, zv);
         const bool counted = ownsPlane(F, cp, p); // a cross-rank CP counts once
+        Real rz_row = 0, wz_row = 0;
         for (int d = 0; d < 3; ++d)
         {
           X(c, d) = 0;
           R(c, d) = r[d];
           Z(c, d) = z[d];
           Pv(c, d) = z[d];
-          if (counted)
-            acc.add(0, r[d] * z[d]), acc.add(1, wv[d] * zv[d]);
+          rz_row += r[d] * z[d];
+          wz_row += wv[d] * zv[d];
         }
+        if (counted)
+          acc.add(0, rz_row), acc.add(1, wz_row);
       },
       ExactSumsReducer<2>(setup));
   Real sums[2];
@@ -134,13 +136,14 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
           for (int d = 0; d < 3; ++d)
             ap[d] = V2[d] - V1[d]; // (A p)_c: the relative velocity the forces p remove
           project(cp, p, mode(c), dim, ap);
-          const bool counted = ownsPlane(F, cp, p);
+          Real pap_row = 0;
           for (int d = 0; d < 3; ++d)
           {
             AP(c, d) = ap[d];
-            if (counted)
-              acc.add(0, Pv(c, d) * ap[d]);
+            pap_row += Pv(c, d) * ap[d];
           }
+          if (ownsPlane(F, cp, p))
+            acc.add(0, pap_row);
         },
         ExactSumsReducer<1>(pap_sum));
     Real pap;
@@ -162,13 +165,14 @@ int ContactSystem::tieSolve(const NodeFields &nodes, Real dt)
           }
           const Real D[3] = {diag(c, 0), diag(c, 1), diag(c, 2)};
           precondition(cp, p, mode(c), D, diag(c, 3), r, z);
-          const bool counted = ownsPlane(F, cp, p);
+          Real rz_row = 0;
           for (int d = 0; d < 3; ++d)
           {
             Z(c, d) = z[d];
-            if (counted)
-              acc.add(0, r[d] * z[d]);
+            rz_row += r[d] * z[d];
           }
+          if (ownsPlane(F, cp, p))
+            acc.add(0, rz_row);
         },
         ExactSumsReducer<1>(rz_sum));
     Real rz_new;
@@ -224,12 +228,13 @@ void ContactSystem::constraintPasses(const NodeFields &nodes, Real dt)
   const bool gather = slots != nullptr;
   const VectorView share = gather ? slots->share : VectorView();
   // the joint CPs' forces are part of what the constraints see; decomposed: their totals over
-  // the ranks (fc holds this rank's faces only), summed in a copy so step 9b still sums parts
+  // the ranks (fc holds this rank's faces only, or the shared nodes' totals already when they
+  // sum in order), made whole in a copy so step 9b still sums parts
   VectorView joint = fc;
   if (_comm.sum_nodes)
   {
     Kokkos::deep_copy(dv, fc);
-    _comm.sum_nodes(dv);
+    sumOverRanks(_gather_forces ? &_share_rows : nullptr, dv);
     joint = dv;
   }
   Kokkos::parallel_for(

@@ -43,11 +43,16 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   // the cycle's contact work, booked on the leapfrog's own terms
   // 1/2 v^n.(F^{n+1/2} dt_n + F^{n-1/2} dt_{n-1}) like the external work, so the energy balance
   // closes with contact = stored + dissipated
+  // decomposed with the shared nodes' forces whole on every copy: counted on their owner
   Real work = 0, stored = 0;
+  auto copy = _copy_node;
+  const Index ncopy = Index(copy.extent(0));
   Kokkos::parallel_reduce(
       "scpdyn::contact::work", Kokkos::RangePolicy<ExecSpace>(0, nused),
       KOKKOS_LAMBDA(const Index i, Real &w) {
         const Index k = used(i);
+        if (k < ncopy && copy(k) != 0)
+          return;
         for (int d = 0; d < dim; ++d)
           w -= 0.5 * v(k, d) * (fc(k, d) * dt + impulse(k, d));
       },

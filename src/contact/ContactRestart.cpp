@@ -162,10 +162,12 @@ void ContactSystem::saveState(RestartWriter &out, MPI_Comm comm,
   auto impulse = Kokkos::create_mirror_view_and_copy(HostSpace(), _impulse);
   auto used = Kokkos::create_mirror_view_and_copy(HostSpace(), _faces.nodes_used);
   auto vh = Kokkos::create_mirror_view_and_copy(HostSpace(), v);
+  auto copy = Kokkos::create_mirror_view_and_copy(HostSpace(), _copy_node);
   Real lag = 0;
   for (size_t i = 0; i < used.extent(0); ++i)
-    for (int d = 0; d < _dim; ++d)
-      lag -= 0.5 * vh(used(i), d) * impulse(used(i), d);
+    if (size_t(used(i)) >= copy.extent(0) || copy(used(i)) == 0) // as finish() counts them
+      for (int d = 0; d < _dim; ++d)
+        lag -= 0.5 * vh(used(i), d) * impulse(used(i), d);
   out.put("contact.rank_partials", gatherToRoot({_work, _stored, lag}, comm));
   std::vector<double> impulses;
   for (size_t k = 0; k < impulse.extent(0) && k < node_global.size(); ++k)

@@ -44,15 +44,23 @@ void ContactSystem::planSearch(const NodeFields &nodes, Real dt, long cycle)
 {
   if (!_gap_from_motion || cycle == _planned_cycle)
     return;
-  auto used = _faces.nodes_used;
+  // the nodes of this rank's own faces: decomposed, a ghost node's velocity is a step old and
+  // a shared node on no contact face is in the node arrays too; over the ranks, the nodes of
+  // every face, as in one rank
+  const ContactFaceData F = _faces;
   auto v = nodes.v;
   Real v2 = 0;
   Kokkos::parallel_reduce(
-      "scpdyn::contact::fastestNode", Kokkos::RangePolicy<ExecSpace>(0, used.extent(0)),
-      KOKKOS_LAMBDA(const size_t i, Real &m) {
-        const Index a = used(i);
-        const Real s = v(a, 0) * v(a, 0) + v(a, 1) * v(a, 1) + v(a, 2) * v(a, 2);
-        m = s > m ? s : m;
+      "scpdyn::contact::fastestNode", Kokkos::RangePolicy<ExecSpace>(0, F.count),
+      KOKKOS_LAMBDA(const Index f, Real &m) {
+        if (F.ghost(f))
+          return;
+        for (int k = 0; k < F.num_nodes(f); ++k)
+        {
+          const Index a = F.nodes(f, k);
+          const Real s = v(a, 0) * v(a, 0) + v(a, 1) * v(a, 1) + v(a, 2) * v(a, 2);
+          m = s > m ? s : m;
+        }
       },
       Kokkos::Max<Real>(v2));
   Real speed = std::sqrt(v2);

@@ -9,11 +9,13 @@
 #include "contact/ContactSearch.hpp"
 #include "contact/ContactSetup.hpp"
 #include "core/ExactSum.hpp"
+#include "parallel/OrderedNodeSum.hpp"
 
 #include <mpi.h>
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,15 @@ struct ContactComm
   std::function<Real(Real)> max;
   /// Integer sums over the ranks (the limbs of ExactSums: exact, so in any order).
   std::function<void(std::int64_t *, int)> sum_exact;
+  /// Under numerics.scatter gather: the nodes other ranks hold too (per local node, its index
+  /// in the plans' term lists, or -1; 1 where this rank owns it), and the plan that sums their
+  /// terms over the ranks in the serial order (collective), so the shared nodes get the
+  /// serial run's bits; then only the ghost nodes need the owners' values.
+  std::vector<Index> shared_index;
+  std::vector<char> owned;
+  std::function<std::shared_ptr<OrderedNodeSum>(const std::vector<std::vector<NodeTerm>> &)>
+      ordered_plan;
+  std::function<void(const VectorView &)> gather_ghosts;
 };
 
 /// \brief Host copy of the live CPs for output (one point per CP).
@@ -137,6 +148,9 @@ public:
   /// \brief Step 8: the ghost faces' element densities, in the order of setGhostFaces.
   void setGhostDensity(const std::vector<Real> &density);
   bool hasExplicit() const { return _has_explicit; }
+  /// \brief Decomposed: the forces of the nodes other ranks hold are whole on every copy after
+  /// computeForces() (summed over the ranks in the serial order), so step 9b has nothing to add.
+  bool sharedNodesWhole() const { return _copy_node.extent(0) > 0; }
   /// \brief Whether a contact surface has the sleepy option (its CPs can fail).
   bool hasSleepy() const { return _has_sleepy; }
   /// \brief Whether a sleepy surface switches on a failure measure of its elements (not the
@@ -292,14 +306,26 @@ private:
     IndexView offsets;    ///< per contact node + 1: its slots' range
     IndexView slots;      ///< slots, ascending within each node's range
     long generation = -1; ///< the CP list (_cp_generation) they describe
+    /// decomposed: the slots of the nodes other ranks hold, summed over the ranks in order (the
+    /// nodes' ranges above are then empty)
+    std::shared_ptr<OrderedNodeSum> across;
   };
   NodeSlotRows _share_rows; ///< the joint CPs' (one entry per CP)
   NodeSlotRows _tie_rows;   ///< the tie rows' (_tie_points entries per CP)
   long _cp_generation = 0;  ///< bumped whenever the CP list is replaced
   /// the nodes' slot lists of the current CP list, per_cp entries per CP (host)
   void buildSlotRows(int per_cp, NodeSlotRows &rows);
-  /// out(k) = (from_zero ? 0 : out(k)) + each contact node's slots, in order
+  /// out(k) = (from_zero ? 0 : out(k)) + each contact node's slots, in order (decomposed: the
+  /// slots of every rank at a shared node)
   void assembleSlots(const NodeSlotRows &rows, const VectorView &out, bool from_zero);
+  /// A nodal sum of this rank's CPs made whole over the ranks: after assembleSlots(rows) only
+  /// the ghost nodes are missing (the shared ones are whole); without rows the shared-node
+  /// partial sums of sum_nodes.
+  void sumOverRanks(const NodeSlotRows *rows, const VectorView &f) const;
+  bool _scatter_gather = false; ///< numerics.scatter gather
+  /// per local node: 1 at the shared nodes this rank does not own, when their contact forces
+  /// are whole on every copy (ContactComm::ordered_plan; else empty)
+  DeviceView<std::uint8_t *> _copy_node;
   /// `rows` (per_cp entries per CP) up to date for the current CP list, under _gather_forces;
   /// else null (the atomic adds)
   const NodeSlotRows *slotRows(int per_cp, NodeSlotRows &rows);

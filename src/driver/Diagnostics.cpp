@@ -30,9 +30,10 @@ std::vector<Real> Solver::gaugeValues() const
       KOKKOS_LAMBDA(const Index g) {
         const Index k = id(g);
         const int c = code(g);
-        Real value = 0;
+        // another rank's gauge adds -0, which leaves every value as it is (a -0 too)
+        Real value = -0.0;
         if (k < 0)
-          ; // another rank's gauge
+          ;
         else if (c < 100)
           value = c < 3 ? x(k, c) : c < 6 ? x(k, c - 3) - x0(k, c - 3) : v(k, c - 6);
         else
@@ -55,7 +56,7 @@ std::vector<Real> Solver::gaugeValues() const
       });
   auto h = Kokkos::create_mirror_view_and_copy(HostSpace(), values);
   std::vector<Real> out(h.data(), h.data() + count);
-  if (_m.dd) // exact: one rank holds each value, the others add zeros
+  if (_m.dd) // exact: one rank holds each value, the others add -0
     allReduceSum(out.data(), int(count), _m.comm);
   if (!_m.joint_gauges.empty())
     jointGaugeValues(out);
@@ -67,7 +68,7 @@ void Solver::jointGaugeValues(std::vector<Real> &out) const
   // the anchor nodes' positions from the ranks that own them; then each rank's sums over its
   // CPs near them, added over the ranks; then the quantities
   const size_t n = _m.joint_gauges.size();
-  std::vector<Real> centre(3 * n, 0.0);
+  std::vector<Real> centre(3 * n, -0.0); // the other ranks add -0: exact
   for (size_t j = 0; j < n; ++j)
     if (_m.joint_gauges[j].anchor >= 0)
     {

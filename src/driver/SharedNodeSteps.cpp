@@ -24,12 +24,15 @@ void Solver::stepExchangeSharedNodeForces()
   if (!_m.dd)
     return;
   ScopedStep t(_timers, "07_shared_node_forces");
-  _m.dd->halo->sum(_m.nodes.f_int);
+  if (_m.dd->corner_sum) // the corners of every rank in the serial order
+    _m.dd->corner_sum->sum(_m.corners.corner_force, _m.nodes.f_int);
+  else
+    _m.dd->halo->sum(_m.nodes.f_int);
 }
 
 void Solver::stepExchangeContactPartials()
 {
-  if (!_m.dd || !_m.contact)
+  if (!_m.dd || !_m.contact || _m.contact->sharedNodesWhole())
     return;
   ScopedStep t(_timers, "09b_shared_contact_forces");
   // the partials come from the contact's own field, which holds zero at a node this rank's

@@ -76,10 +76,12 @@ std::vector<int> nodeChunks(const ElementFields &elems, const std::vector<Elemen
 }
 
 NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
-                            Index num_nodes, int chunks)
+                            Index num_nodes, int chunks, const std::vector<Index> &also_shared)
 {
   auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), elems.conn);
-  const std::vector<int> chunk_of = nodeChunks(elems, groups, num_nodes, chunks);
+  std::vector<int> chunk_of = nodeChunks(elems, groups, num_nodes, chunks);
+  for (Index n : also_shared)
+    chunk_of[size_t(n)] = -2;
   // a slot per shared corner, in ascending (element, corner) order, so a node's slots ascend
   // as its corners do
   std::vector<std::uint8_t> mask(static_cast<size_t>(elems.count), 0);

@@ -69,9 +69,11 @@ std::vector<int> nodeChunks(const ElementFields &elems, const std::vector<Elemen
                             Index num_nodes, int chunks, std::vector<Index> *last = nullptr);
 
 /// \brief The chunks of the deterministic assembly (NodeCorners) for `chunks` threads: which
-/// nodes two chunks share, their corners, and the corner force array.
+/// nodes two chunks share, their corners, and the corner force array. The nodes of
+/// `also_shared` (those other ranks hold too) store their corners whatever the chunks.
 NodeCorners makeNodeCorners(const ElementFields &elems, const std::vector<ElementGroup> &groups,
-                            Index num_nodes, int chunks);
+                            Index num_nodes, int chunks,
+                            const std::vector<Index> &also_shared = {});
 
 /// \brief The four rows of a hex row pack (markRowPacks()): lane l's corner kHexRowMinus[r] is
 /// node base_r + l and its corner kHexRowPlus[r] node base_r + l + 1.

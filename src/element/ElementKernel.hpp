@@ -341,16 +341,47 @@ struct ElementKernel
     bool one_material = true;
     for (int l = 1; l < W; ++l)
       one_material = one_material && mat_id(el[l]) == m0;
+    // The elastic update runs on the pack (updateMaterial's own stages, MetalUpdate.hpp), once
+    // for each elastic + linear EOS material among the lanes, each lane keeping its own
+    // material's result: an element gets the same bits whichever elements share its pack,
+    // which depends on the thread chunks and on where the partition cuts. The other models run
+    // one lane at a time (they read the history slots directly).
+    bool done[W] = {};
     if (one_material && isElasticLinear(materials(m0)))
     {
-      // the elastic update on the pack: updateMaterial's own stages (MetalUpdate.hpp)
       const MaterialParams &mp = materials(m0);
       const P c2 =
           elasticLinearUpdate(mp, k.D, ctl.dt, k.rho_old, k.rho_new, k.q_mean, s.stress, s.energy);
       c = LaneOps<P>::sqrt(LaneOps<P>::max(c2, LaneOps<P>::broadcast(soundSpeedSquaredFloor(mp))));
-    }
-    else // one lane at a time (it reads the history slots directly)
       for (int l = 0; l < W; ++l)
+        done[l] = true;
+    }
+    else
+      for (int l = 0; l < W; ++l)
+      {
+        const Index m = mat_id(el[l]);
+        if (done[l] || !isElasticLinear(materials(m)))
+          continue;
+        const MaterialParams &mp = materials(m);
+        P stress[6], energy = s.energy;
+        for (int j = 0; j < 6; ++j)
+          stress[j] = s.stress[j];
+        const P c2 =
+            elasticLinearUpdate(mp, k.D, ctl.dt, k.rho_old, k.rho_new, k.q_mean, stress, energy);
+        const P cm = LaneOps<P>::sqrt(
+            LaneOps<P>::max(c2, LaneOps<P>::broadcast(soundSpeedSquaredFloor(mp))));
+        for (int j = l; j < W; ++j)
+          if (!done[j] && mat_id(el[j]) == m)
+          {
+            for (int i = 0; i < 6; ++i)
+              s.stress[i][j] = stress[i][j];
+            s.energy[j] = energy[j];
+            c[j] = cm[j];
+            done[j] = true;
+          }
+      }
+    for (int l = 0; l < W; ++l)
+      if (!done[l])
       {
         const Index e = el[l];
         const MaterialParams &mat = materials(mat_id(e));

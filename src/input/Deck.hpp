@@ -296,13 +296,13 @@ struct Deck
   ContactSpec contact;
 };
 
-/// \brief `numerics.scatter: gather` on more than one thread: the assemblies that sum in a
-/// fixed order run (the element corners, ModelSetup.cpp; the joint CPs' node shares,
-/// ContactShares.cpp). On one thread plain adds in index order give their sums bit for bit, so
-/// they are skipped.
-inline bool orderedAssembly(const Deck &deck)
+/// \brief `numerics.scatter: gather` on more than one thread or rank: the assemblies that sum
+/// in a fixed order run (the element corners, ModelSetup.cpp; the joint CPs' node shares,
+/// ContactShares.cpp). On one thread of one rank plain adds in index order give their sums bit
+/// for bit, so they are skipped; a decomposed run needs the terms of its shared nodes.
+inline bool orderedAssembly(const Deck &deck, bool decomposed = false)
 {
-  return deck.scatter == ScatterMode::Gather && ExecSpace().concurrency() > 1;
+  return deck.scatter == ScatterMode::Gather && (ExecSpace().concurrency() > 1 || decomposed);
 }
 
 /// \brief Parse and validate a deck; throws InputError naming key path and line.

@@ -67,6 +67,15 @@ void ModelSetup::setupContactGhosts()
     dd->ghosts->gather(&f, 1);
   };
   MPI_Comm comm = _m.comm;
+  if (orderedAssembly(_m.deck, true))
+  {
+    cc.shared_index = dd->shared_index;
+    cc.owned = dd->owned;
+    cc.ordered_plan = [dd, comm](const std::vector<std::vector<NodeTerm>> &terms) {
+      return std::make_shared<OrderedNodeSum>(comm, dd->shared, terms);
+    };
+    cc.gather_ghosts = [dd](const VectorView &f) { dd->ghosts->gather(&f, 1); };
+  }
   cc.sum = [comm](Real *v, int count) { allReduceSum(v, count, comm); };
   cc.max = [comm](Real v) { return allReduceMax(v, comm); };
   cc.sum_exact = [comm](std::int64_t *v, int count) {

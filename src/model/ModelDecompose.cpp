@@ -10,6 +10,7 @@
 #include "parallel/Partitioner.hpp"
 
 #include <algorithm>
+#include <functional>
 
 namespace scpdyn
 {
@@ -54,6 +55,10 @@ void ModelSetup::decompose()
   _m.dd->halo = std::make_unique<NodeHalo>(d, _m.comm);
   _m.dd->owned = ownedNodes(d);
   _m.dd->shared_nodes = toDevice(d.shared.local, "shared_nodes");
+  _m.dd->shared = d.shared;
+  _m.dd->shared_index.assign(d.global_node.size(), -1);
+  for (Index s = 0; s < d.shared.size(); ++s)
+    _m.dd->shared_index[size_t(d.shared.local[size_t(s)])] = s;
   _m.dd->global_nodes = long(global.numNodes());
   _m.dd->global_elements = long(global.numElements());
 
@@ -98,9 +103,82 @@ void ModelSetup::finishDecomposition()
   for (size_t n = 0; n < _m.dd->owned.size(); ++n)
     h(n) = _m.dd->owned[n];
   Kokkos::deep_copy(_m.dd->owned_device, h);
+  if (orderedAssembly(_m.deck, _m.dd != nullptr))
+    setupCornerSum();
   const size_t n = size_t(_m.nodes.count);
   _m.dd->f_contact = VectorView("f_contact_partial", n);
   _m.dd->f_load = VectorView("f_load_partial", n);
+}
+
+std::vector<std::vector<NodeTerm>>
+ModelSetup::cornerTerms(const std::function<TermKey(Index, int)> &key,
+                        const std::function<Index(Index, int)> &slot,
+                        std::vector<std::pair<Index, int>> *corners) const
+{
+  std::vector<std::vector<NodeTerm>> terms(size_t(_m.dd->shared.size()));
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.elems.conn);
+  for (Index e = 0; e < _m.elems.count; ++e)
+    for (int a = 0; a < kMaxElementNodes && conn(e, a) >= 0; ++a)
+    {
+      const Index s = _m.dd->shared_index[size_t(conn(e, a))];
+      if (s < 0)
+        continue;
+      Index q = 0;
+      if (slot)
+        q = slot(e, a);
+      else
+      {
+        q = Index(corners->size());
+        corners->push_back({e, a});
+      }
+      terms[size_t(s)].push_back({key(e, a), q});
+    }
+  return terms;
+}
+
+void ModelSetup::sumSharedMasses(const RealView::HostMirror &element_mass,
+                                 const RealView::HostMirror &node_mass) const
+{
+  // the serial set-up adds m / n in mesh element order (part by part), then corner order
+  std::vector<Index> mesh_of(_m.host_to_device_element.size());
+  for (size_t k = 0; k < mesh_of.size(); ++k)
+    mesh_of[size_t(_m.host_to_device_element[k])] = Index(k);
+  std::vector<std::pair<Index, int>> corners;
+  const auto terms = cornerTerms(
+      [&](Index e, int a) {
+        return TermKey{_m.dd->global_element[size_t(mesh_of[size_t(e)])], a, 0};
+      },
+      {}, &corners);
+  auto conn = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.elems.conn);
+  std::vector<Real> values, sums(node_mass.extent(0));
+  for (const auto &[e, a] : corners)
+  {
+    int nn = 0;
+    while (nn < kMaxElementNodes && conn(e, nn) >= 0)
+      ++nn;
+    values.push_back(element_mass(e) / nn);
+  }
+  OrderedNodeSum(_m.comm, _m.dd->shared, terms).sumHost(values, 1, sums);
+  for (Index n : _m.dd->shared.local)
+    node_mass(n) = sums[size_t(n)];
+}
+
+void ModelSetup::setupCornerSum()
+{
+  // the serial run adds a node's corner forces in device element order, then corner order
+  // (plain adds, or NodeCorners' ascending slots): the key; the value is the corner's slot
+  auto base = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.corners.corner_base);
+  auto mask = Kokkos::create_mirror_view_and_copy(HostSpace(), _m.corners.shared_corners);
+  const std::vector<Index> &cell = _m.dd->output_cell;
+  const auto terms = cornerTerms(
+      [&](Index e, int a) {
+        return TermKey{cell[size_t(e)], a, 0};
+      },
+      [&](Index e, int a) {
+        return base(e) + Index(__builtin_popcount(unsigned(mask(e)) & ((1u << a) - 1u)));
+      },
+      nullptr);
+  _m.dd->corner_sum = std::make_unique<OrderedNodeSum>(_m.comm, _m.dd->shared, terms);
 }
 
 void ModelSetup::checkSetNotEmpty(std::size_t local_count, const std::string &message) const

@@ -383,13 +383,13 @@ void ModelSetup::setupFields()
     if (!(h_mass(n) > 0))
       throw InputError(_m.deck.path + ": parts: node " + std::to_string(globalNode(n)) +
                        " belongs to no element (zero mass)");
+  Kokkos::deep_copy(_m.elems.conn, h_conn);
+  if (_m.dd) // step 2 [A]: every copy of a shared node holds the total mass
+    sumSharedMasses(h_emass, h_mass);
   Kokkos::deep_copy(_m.nodes.x0, h_x0);
   Kokkos::deep_copy(_m.nodes.x, h_x0);
   Kokkos::deep_copy(_m.nodes.mass, h_mass);
-  if (_m.dd) // step 2 [A]: every copy of a shared node holds the total mass
-    _m.dd->halo->sum(_m.nodes.mass);
   Kokkos::deep_copy(_m.nodes.bc, h_bc);
-  Kokkos::deep_copy(_m.elems.conn, h_conn);
   Kokkos::deep_copy(_m.elems.part, h_part);
   Kokkos::deep_copy(_m.elems.material, h_mat);
   Kokkos::deep_copy(_m.elems.mass, h_emass);
@@ -401,8 +401,9 @@ void ModelSetup::setupFields()
   Kokkos::deep_copy(_m.materials, h_materials);
 
   _m.elems.row_pack = markRowPacks(_m.elems, _m.groups);
-  if (orderedAssembly(_m.deck))
-    _m.corners = makeNodeCorners(_m.elems, _m.groups, num_nodes, ExecSpace().concurrency());
+  if (orderedAssembly(_m.deck, _m.dd != nullptr))
+    _m.corners = makeNodeCorners(_m.elems, _m.groups, num_nodes, ExecSpace().concurrency(),
+                                 _m.dd ? _m.dd->shared.local : std::vector<Index>());
 }
 
 /// Step 12 inside step 6 for the nodes nothing after it touches (NodeSweep), when the element
@@ -412,7 +413,7 @@ void ModelSetup::setupNodeSweep()
 #if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
   const bool ordered = false; // no chunks on a device
 #else
-  const bool ordered = ExecSpace().concurrency() == 1 || orderedAssembly(_m.deck);
+  const bool ordered = ExecSpace().concurrency() == 1 || orderedAssembly(_m.deck, _m.dd != nullptr);
 #endif
   if (_m.deck.node_update != NodeUpdateMode::Fused || !ordered)
     return;
@@ -430,7 +431,8 @@ void ModelSetup::setupNodeSweep()
     late.declareFlagged("nodes of other ranks", not_owned);
   }
   _m.sweep = makeNodeSweep(_m.elems, _m.groups, _m.nodes,
-                           orderedAssembly(_m.deck) ? _m.corners.chunks : 1, late.mask());
+                           orderedAssembly(_m.deck, _m.dd != nullptr) ? _m.corners.chunks : 1,
+                           late.mask());
   _m.sweep_nodes =
       _m.dd ? long(allReduceSum((long long)_m.sweep.early_nodes, _m.comm)) : _m.sweep.early_nodes;
 }
@@ -638,28 +640,29 @@ void ModelSetup::setupInitialState()
     }
   }
   if (_m.dd)
-  { // a node shared between ranks takes the mean over the elements of every rank
-    VectorView p("initial_momentum", size_t(num_nodes));
-    RealView m("initial_mass", size_t(num_nodes));
-    auto h_p = Kokkos::create_mirror_view(p);
-    auto h_m = Kokkos::create_mirror_view(m);
-    for (Index n = 0; n < num_nodes; ++n)
+  { // a node shared between ranks takes the mean over the elements of every rank, summed in
+    // the serial order (device element, then corner), so every copy has the serial bits
+    std::vector<std::pair<Index, int>> corners;
+    const std::vector<Index> &cell = _m.dd->output_cell;
+    const auto terms = cornerTerms(
+        [&](Index e, int a) {
+          return TermKey{cell[size_t(e)], a, 0};
+        },
+        {}, &corners);
+    std::vector<Real> values, sums(4 * size_t(num_nodes));
+    for (const auto &[e, a] : corners)
     {
-      h_m(n) = mass[size_t(n)];
-      for (int i = 0; i < 3; ++i)
-        h_p(n, i) = momentum[size_t(n)][size_t(i)];
+      const HostPart &part = _m.mesh.parts[size_t(h_part(e))];
+      const auto &v0 = _m.deck.parts[size_t(_m.part_spec[size_t(h_part(e))])].initial_velocity;
+      const Real m = h_emass(e) / nodesPerElement(part.type);
+      values.insert(values.end(), {m, m * v0[0], m * v0[1], m * v0[2]});
     }
-    Kokkos::deep_copy(p, h_p);
-    Kokkos::deep_copy(m, h_m);
-    _m.dd->halo->sum(p);
-    _m.dd->halo->sum(m);
-    Kokkos::deep_copy(h_p, p);
-    Kokkos::deep_copy(h_m, m);
-    for (Index n = 0; n < num_nodes; ++n)
+    OrderedNodeSum(_m.comm, _m.dd->shared, terms).sumHost(values, 4, sums);
+    for (Index n : _m.dd->shared.local)
     {
-      mass[size_t(n)] = h_m(n);
+      mass[size_t(n)] = sums[4 * size_t(n)];
       for (int i = 0; i < 3; ++i)
-        momentum[size_t(n)][size_t(i)] = h_p(n, i);
+        momentum[size_t(n)][size_t(i)] = sums[4 * size_t(n) + 1 + size_t(i)];
     }
   }
   auto h_v = Kokkos::create_mirror_view(_m.nodes.v);
@@ -738,7 +741,7 @@ void ModelSetup::setupInitialState()
   _m.controls.hourglass_coefficient = _m.deck.hourglass_coefficient;
   _m.controls.q_linear = _m.deck.bulk_viscosity_linear;
   _m.controls.q_quadratic = _m.deck.bulk_viscosity_quadratic;
-  _m.controls.gather = orderedAssembly(_m.deck);
+  _m.controls.gather = orderedAssembly(_m.deck, _m.dd != nullptr);
   for (const MaterialParams &m : _m.materials_host)
     _m.controls.erosion = _m.controls.erosion || m.erosion.active;
 

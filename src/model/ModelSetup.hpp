@@ -4,6 +4,9 @@
 /// part, in ModelSetup.cpp (mesh, fields, sets, BCs, initial state, node sweep),
 /// ModelDecompose.cpp, ModelContact.cpp and ModelGauges.cpp. Only Model's constructor uses it.
 #include "model/Model.hpp"
+#include "parallel/OrderedNodeSum.hpp"
+
+#include <functional>
 
 namespace scpdyn
 {
@@ -24,6 +27,17 @@ private:
   void decompose();
   void setupFields();
   void finishDecomposition();
+  /// The decomposed run's terms of its shared nodes: every corner (e, a) of a device element
+  /// at a shared node, keyed key(e, a), with value slot slot(e, a); without `slot`, slots
+  /// numbered in (e, a) order, and `corners` lists the corner of each.
+  std::vector<std::vector<NodeTerm>> cornerTerms(const std::function<TermKey(Index, int)> &key,
+                                                 const std::function<Index(Index, int)> &slot,
+                                                 std::vector<std::pair<Index, int>> *corners) const;
+  void setupCornerSum();
+  /// Step 2 [A] of a decomposed run: the shared nodes' masses, from the element masses, in
+  /// the serial order.
+  void sumSharedMasses(const RealView::HostMirror &element_mass,
+                       const RealView::HostMirror &node_mass) const;
   void setupSets();
   void setupBoundaryConditions();
   void setupContact();

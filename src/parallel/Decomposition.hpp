@@ -6,6 +6,7 @@
 #include "core/Types.hpp"
 #include "parallel/GhostFaces.hpp"
 #include "parallel/NodeHalo.hpp"
+#include "parallel/OrderedNodeSum.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -25,7 +26,12 @@ struct DomainDecomposition
   /// type, ascending global id within a type), which is the cell order of the output files.
   std::vector<Index> output_cell;
   std::unique_ptr<NodeHalo> halo;
-  IndexView shared_nodes; ///< local ids of the shared nodes
+  IndexView shared_nodes;          ///< local ids of the shared nodes
+  SharedNodes shared;              ///< the same with the ranks holding each
+  std::vector<Index> shared_index; ///< per local node: its index in `shared`, or -1
+  /// Step 7 under numerics.scatter gather: the element corners of the shared nodes summed in
+  /// the serial order (OrderedNodeSum), so a decomposed run has the serial run's bits.
+  std::unique_ptr<OrderedNodeSum> corner_sum;
   /// Steps 9b and 10: the partial contact / pressure forces of this rank, summed over the copies in
   /// their own arrays so no force is counted twice.
   VectorView f_contact, f_load;

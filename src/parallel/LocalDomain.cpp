@@ -139,6 +139,17 @@ LocalDomain buildLocalDomain(const HostMesh &global, const std::vector<int> &ele
   return d;
 }
 
+std::vector<int> neighbourRanks(const SharedNodes &shared, int rank)
+{
+  std::vector<int> out;
+  for (int r : shared.ranks)
+    if (r != rank)
+      out.push_back(r);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 std::vector<char> ownedNodes(const LocalDomain &domain)
 {
   std::vector<char> owned(size_t(domain.mesh.numNodes()), 1);

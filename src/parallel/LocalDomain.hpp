@@ -56,6 +56,10 @@ struct LocalDomain
 LocalDomain buildLocalDomain(const HostMesh &global, const std::vector<int> &element_rank,
                              int rank);
 
+/// \brief The other ranks that hold a node of `shared`, ascending (the neighbours of the
+/// shared-node exchanges).
+std::vector<int> neighbourRanks(const SharedNodes &shared, int rank);
+
 /// \brief Per local node: 1 if this rank owns it (not shared, or this is the lowest rank holding
 /// it), else 0. Every node has exactly one owner, so sums over owned nodes (kinetic energy,
 /// momentum, output) count each node once.

@@ -149,7 +149,7 @@ inline void allReduceSumMin(Real *sums, int n, Real *mins, int m, MPI_Comm comm 
   MPI_Allgather(mine.data(), w, MPI_DOUBLE, all.data(), w, MPI_DOUBLE, comm);
   for (int i = 0; i < n; ++i)
   {
-    Real s = 0;
+    Real s = -0.0; // the identity of +: a sum of one rank's -0 and the others' -0 stays -0
     for (int r = 0; r < size; ++r)
       s += all[size_t(r) * size_t(w) + size_t(i)];
     sums[i] = s;

@@ -29,11 +29,7 @@ NodeHalo::NodeHalo(const LocalDomain &domain, MPI_Comm comm)
                              " built on rank " + std::to_string(_rank));
   const SharedNodes &sh = domain.shared;
   _num_shared = sh.size();
-  for (int r : sh.ranks)
-    if (r != _rank)
-      _neighbours.push_back(r);
-  std::sort(_neighbours.begin(), _neighbours.end());
-  _neighbours.erase(std::unique(_neighbours.begin(), _neighbours.end()), _neighbours.end());
+  _neighbours = neighbourRanks(sh, _rank);
 
   // Slots: for each neighbour, the shared nodes it holds in ascending shared index (= global
   // id), so both ends list the same nodes in the same order.
