@@ -679,7 +679,8 @@ void Outputs::finishWith(const std::string &status, const std::string &error,
     // per rank: subdomain size and bytes sent per cycle (shared-node sums of steps 7, 9b and 10
     // and of the constraint solves, ghost copies of step 8, ghost rebuilds of step 4)
     const double cycles = std::max(1.0, double(_solver.cycles()));
-    const double halo = double(dd->halo->bytesSent() - dd->halo_bytes_setup);
+    const double halo =
+        double(dd->halo->bytesSent() - dd->halo_bytes_setup) + double(dd->ordered_bytes);
     const double ghost = dd->ghosts ? double(dd->ghosts->bytesGathered()) : 0.0;
     const double values[] = {double(_solver.elements().count),
                              double(_solver.nodes().count),

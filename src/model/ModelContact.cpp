@@ -72,7 +72,7 @@ void ModelSetup::setupContactGhosts()
     cc.shared_index = dd->shared_index;
     cc.owned = dd->owned;
     cc.ordered_plan = [dd, comm](const std::vector<std::vector<NodeTerm>> &terms) {
-      return std::make_shared<OrderedNodeSum>(comm, dd->shared, terms);
+      return std::make_shared<OrderedNodeSum>(comm, dd->shared, terms, &dd->ordered_bytes);
     };
     cc.gather_ghosts = [dd](const VectorView &f) { dd->ghosts->gather(&f, 1); };
   }

@@ -178,7 +178,8 @@ void ModelSetup::setupCornerSum()
         return base(e) + Index(__builtin_popcount(unsigned(mask(e)) & ((1u << a) - 1u)));
       },
       nullptr);
-  _m.dd->corner_sum = std::make_unique<OrderedNodeSum>(_m.comm, _m.dd->shared, terms);
+  _m.dd->corner_sum =
+      std::make_unique<OrderedNodeSum>(_m.comm, _m.dd->shared, terms, &_m.dd->ordered_bytes);
 }
 
 void ModelSetup::checkSetNotEmpty(std::size_t local_count, const std::string &message) const

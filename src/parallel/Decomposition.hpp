@@ -43,6 +43,8 @@ struct DomainDecomposition
   /// Traffic accounting (docs/scaling.md): shared-node bytes sent during set-up (excluded from
   /// the per-cycle figure) and bytes of the ghost-face rebuilds so far.
   std::uint64_t halo_bytes_setup = 0, rebuild_bytes = 0;
+  /// Bytes of the shared-node sums in the serial order (OrderedNodeSum) in the cycles so far.
+  std::uint64_t ordered_bytes = 0;
 };
 
 } // namespace scpdyn

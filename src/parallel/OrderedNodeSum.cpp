@@ -11,17 +11,17 @@ namespace scpdyn
 namespace
 {
 
-// tags of this plan's messages: every exchange completes before its call returns, so a tag
-// per message kind is enough on the caller's communicator
-constexpr int kCountTag = 7401, kKeyTag = 7402, kValueTag = 7403;
-
-MPI_Datatype indexType() { return sizeof(Index) == 8 ? MPI_INT64_T : MPI_INT32_T; }
+// tags of this plan's messages: every exchange completes before its call returns, and the
+// messages between two ranks arrive in the order they were sent, so a tag per message kind is
+// enough on the caller's communicator
+constexpr int kKeyTag = 7402, kValueTag = 7403;
 
 } // namespace
 
 OrderedNodeSum::OrderedNodeSum(MPI_Comm comm, const SharedNodes &sh,
-                               const std::vector<std::vector<NodeTerm>> &terms)
-    : _comm(comm)
+                               const std::vector<std::vector<NodeTerm>> &terms,
+                               std::uint64_t *bytes_sent)
+    : _comm(comm), _bytes_sent(bytes_sent)
 {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
@@ -45,49 +45,51 @@ OrderedNodeSum::OrderedNodeSum(MPI_Comm comm, const SharedNodes &sh,
     std::sort(t.begin(), t.end(),
               [](const NodeTerm &a, const NodeTerm &b) { return a.key < b.key; });
 
-  // 1. how many terms each node has on each end
-  std::vector<std::vector<Index>> send_count(nn), recv_count(nn);
-  std::vector<MPI_Request> req;
+  // 1. one message per neighbour: the term count of each node it shares, then the terms' keys
+  // node by node (sized on arrival by a probe, so one round); the slots sent, in key order
+  _send_offset.assign(nn + 1, 0);
+  _recv_offset.assign(nn + 1, 0);
+  std::vector<std::vector<std::int64_t>> sent(nn), got(nn);
+  std::vector<MPI_Request> req(nn, MPI_REQUEST_NULL);
   for (size_t j = 0; j < nn; ++j)
   {
     for (Index s : nodes_of[j])
-      send_count[j].push_back(Index(own[size_t(s)].size()));
-    recv_count[j].resize(nodes_of[j].size());
-    req.emplace_back();
-    MPI_Irecv(recv_count[j].data(), int(recv_count[j].size()), indexType(), _neighbours[j],
-              kCountTag, comm, &req.back());
-    req.emplace_back();
-    MPI_Isend(send_count[j].data(), int(send_count[j].size()), indexType(), _neighbours[j],
-              kCountTag, comm, &req.back());
-  }
-  MPI_Waitall(int(req.size()), req.data(), MPI_STATUSES_IGNORE);
-  req.clear();
-
-  // 2. their keys, node by node in message order; the slots sent, in the same order
-  _send_offset.assign(nn + 1, 0);
-  _recv_offset.assign(nn + 1, 0);
-  std::vector<std::vector<std::int64_t>> send_keys(nn), recv_keys(nn);
-  for (size_t j = 0; j < nn; ++j)
-  {
-    Index received = 0;
-    for (size_t q = 0; q < nodes_of[j].size(); ++q)
-    {
-      for (const NodeTerm &t : own[size_t(nodes_of[j][q])])
+      sent[j].push_back(std::int64_t(own[size_t(s)].size()));
+    for (Index s : nodes_of[j])
+      for (const NodeTerm &t : own[size_t(s)])
       {
-        send_keys[j].insert(send_keys[j].end(), t.key.begin(), t.key.end());
+        sent[j].insert(sent[j].end(), t.key.begin(), t.key.end());
         _send_slot_host.push_back(t.slot);
       }
-      received += recv_count[j][q];
-    }
     _send_offset[j + 1] = Index(_send_slot_host.size());
+    MPI_Isend(sent[j].data(), int(sent[j].size()), MPI_INT64_T, _neighbours[j], kKeyTag, comm,
+              &req[j]);
+  }
+  std::vector<std::vector<Index>> recv_count(nn);
+  std::vector<std::vector<std::int64_t>> recv_keys(nn);
+  for (size_t j = 0; j < nn; ++j)
+  {
+    MPI_Status st;
+    MPI_Probe(_neighbours[j], kKeyTag, comm, &st);
+    int n = 0;
+    MPI_Get_count(&st, MPI_INT64_T, &n);
+    got[j].resize(size_t(n));
+    MPI_Recv(got[j].data(), n, MPI_INT64_T, _neighbours[j], kKeyTag, comm, MPI_STATUS_IGNORE);
+    const size_t nodes = nodes_of[j].size();
+    if (size_t(n) < nodes)
+      throw std::runtime_error("OrderedNodeSum: a short key message from rank " +
+                               std::to_string(_neighbours[j]));
+    Index received = 0;
+    for (size_t q = 0; q < nodes; ++q)
+    {
+      recv_count[j].push_back(Index(got[j][q]));
+      received += recv_count[j].back();
+    }
+    recv_keys[j].assign(got[j].begin() + long(nodes), got[j].end());
+    if (recv_keys[j].size() != 3 * size_t(received))
+      throw std::runtime_error("OrderedNodeSum: the key message of rank " +
+                               std::to_string(_neighbours[j]) + " does not match its counts");
     _recv_offset[j + 1] = _recv_offset[j] + received;
-    recv_keys[j].resize(3 * size_t(received));
-    req.emplace_back();
-    MPI_Irecv(recv_keys[j].data(), int(recv_keys[j].size()), MPI_INT64_T, _neighbours[j], kKeyTag,
-              comm, &req.back());
-    req.emplace_back();
-    MPI_Isend(send_keys[j].data(), int(send_keys[j].size()), MPI_INT64_T, _neighbours[j], kKeyTag,
-              comm, &req.back());
   }
   MPI_Waitall(int(req.size()), req.data(), MPI_STATUSES_IGNORE);
 
@@ -160,6 +162,8 @@ void OrderedNodeSum::sum(const VectorView &values, const VectorView &out, bool f
   if (_send_host.data() != _send.data())
     Kokkos::deep_copy(_send_host, _send);
   exchange(_send_host.data(), _recv_host.data(), 3);
+  if (_bytes_sent)
+    *_bytes_sent += bytesPerVectorSum();
   if (_recv_host.data() != _recv.data())
     Kokkos::deep_copy(_recv, _recv_host);
   const auto node = _node;

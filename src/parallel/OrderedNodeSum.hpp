@@ -41,8 +41,11 @@ public:
   /// \brief Build the plan (collective over `comm`). `terms[s]` are this rank's terms of the
   /// shared node `shared.local[s]` (any order; no two ranks may give a node the same key).
   /// Throws std::runtime_error when keys repeat at a node.
+  /// `bytes_sent`, when given, counts the bytes of the values each sum() sends (traffic
+  /// accounting, docs/scaling.md).
   OrderedNodeSum(MPI_Comm comm, const SharedNodes &shared,
-                 const std::vector<std::vector<NodeTerm>> &terms);
+                 const std::vector<std::vector<NodeTerm>> &terms,
+                 std::uint64_t *bytes_sent = nullptr);
   OrderedNodeSum(const OrderedNodeSum &) = delete;
   OrderedNodeSum &operator=(const OrderedNodeSum &) = delete;
 
@@ -71,6 +74,7 @@ private:
   IndexView _sum_source; ///< in key order: >= 0 received term, < 0 own slot -(source + 1)
   RealView _send, _recv; ///< 3 reals per term, message order
   std::vector<MPI_Request> _requests;          ///< receives, then sends
+  std::uint64_t *_bytes_sent = nullptr;        ///< the traffic counter, or null
   RealView::HostMirror _send_host, _recv_host; ///< alias them when the device is the host
 };
 
