@@ -46,12 +46,11 @@ ContactFailure ContactSystem::finish(const NodeFields &nodes, Real dt, long cycl
   // decomposed with the shared nodes' forces whole on every copy: counted on their owner
   Real work = 0, stored = 0;
   auto copy = _copy_node;
-  const Index ncopy = Index(copy.extent(0));
   Kokkos::parallel_reduce(
       "scpdyn::contact::work", Kokkos::RangePolicy<ExecSpace>(0, nused),
       KOKKOS_LAMBDA(const Index i, Real &w) {
         const Index k = used(i);
-        if (k < ncopy && copy(k) != 0)
+        if (!contact_kernels::countsNodeWork(copy, k))
           return;
         for (int d = 0; d < dim; ++d)
           w -= 0.5 * v(k, d) * (fc(k, d) * dt + impulse(k, d));

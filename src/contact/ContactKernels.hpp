@@ -164,6 +164,15 @@ KOKKOS_INLINE_FUNCTION void shareForce(const ContactFaceData &F, const CommonPla
   });
 }
 
+/// True where this rank counts node k's contact work: everywhere but at the shared nodes that
+/// another rank owns, when their forces are whole on every copy (`copy`:
+/// ContactSystem::_copy_node, a device View or its host mirror; empty otherwise).
+template <class CopyView>
+KOKKOS_INLINE_FUNCTION bool countsNodeWork(const CopyView &copy, Index k)
+{
+  return size_t(k) >= copy.extent(0) || copy(k) == 0;
+}
+
 /// True on the one rank that counts CP p in sums over CPs (energies, dot products, outputs):
 /// the rank of face 1 (the face with the smaller key); every CP in serial.
 KOKKOS_INLINE_FUNCTION bool ownsPlane(const ContactFaceData &F, const CommonPlaneData &cp, Index p)

@@ -2,6 +2,7 @@
 // per-cycle fields, the per-node impulse and the energy accumulators (docs/theory.md 3.5, 12),
 // in an order no decomposition changes.
 #include "contact/ContactSystem.hpp"
+#include "contact/ContactKernels.hpp"
 #include "core/HostCopy.hpp"
 #include "core/InputError.hpp"
 #include "io/RestartFile.hpp"
@@ -165,7 +166,7 @@ void ContactSystem::saveState(RestartWriter &out, MPI_Comm comm,
   auto copy = Kokkos::create_mirror_view_and_copy(HostSpace(), _copy_node);
   Real lag = 0;
   for (size_t i = 0; i < used.extent(0); ++i)
-    if (size_t(used(i)) >= copy.extent(0) || copy(used(i)) == 0) // as finish() counts them
+    if (contact_kernels::countsNodeWork(copy, used(i))) // as finish() counts them
       for (int d = 0; d < _dim; ++d)
         lag -= 0.5 * vh(used(i), d) * impulse(used(i), d);
   out.put("contact.rank_partials", gatherToRoot({_work, _stored, lag}, comm));

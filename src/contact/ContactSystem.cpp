@@ -46,8 +46,9 @@ ContactSystem::ContactSystem(const ContactMeshInput &in)
   _search_gap = deck.contact.search_gap;
   _gap_from_motion = deck.contact.search_gap_motion;
   _tie_points = _dim == 2 ? 2 : 1;
-  _gather_forces = orderedAssembly(deck);
-  _scatter_gather = deck.scatter == ScatterMode::Gather;
+  // decomposed (in.global_count set), the shared nodes' sums in the serial order need the
+  // slots at any thread count
+  _gather_forces = orderedAssembly(deck, bool(in.global_count));
   for (const auto &p : in.mesh->parts)
     _part_names.push_back(p.name);
   _faces = buildContactFaces(in, _info);
@@ -231,10 +232,8 @@ Real ContactSystem::globalSum(Real local) const
 void ContactSystem::setComm(const ContactComm &comm)
 {
   _comm = comm;
-  // the shared nodes' sums in the serial order need the slots at any thread count
-  if (_scatter_gather && _comm.ordered_plan)
+  if (_comm.ordered_plan)
   {
-    _gather_forces = true;
     std::vector<std::uint8_t> copy(_comm.owned.size());
     for (size_t k = 0; k < copy.size(); ++k)
       copy[k] = _comm.shared_index[k] >= 0 && !_comm.owned[k] ? 1 : 0;

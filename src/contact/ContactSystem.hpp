@@ -322,7 +322,6 @@ private:
   /// the ghost nodes are missing (the shared ones are whole); without rows the shared-node
   /// partial sums of sum_nodes.
   void sumOverRanks(const NodeSlotRows *rows, const VectorView &f) const;
-  bool _scatter_gather = false; ///< numerics.scatter gather
   /// per local node: 1 at the shared nodes this rank does not own, when their contact forces
   /// are whole on every copy (ContactComm::ordered_plan; else empty)
   DeviceView<std::uint8_t *> _copy_node;
